@@ -1,0 +1,116 @@
+// fsi: the command-line front end.
+//   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet]
+//   fsi validate CASE_DIR [--out DIR]   runs the checks in CASE_DIR/reference.yaml against their references
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+
+#include "structure/model/Error.hpp"
+#include "structure/run/Simulation.hpp"
+#include "structure/scene/Scene.hpp"
+#include "structure/scene/YamlAccess.hpp"
+
+namespace fs = std::filesystem;
+using namespace fsi::structure;
+
+namespace {
+
+int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets, bool quiet) {
+  Scene scene = loadScene(scenePath, sets);
+  RunOptions opt;
+  opt.outDir = out;
+  opt.quiet = quiet;
+  installInterruptHandler();
+  const RunResult r = runSimulation(scene, opt);
+  if (!quiet)
+    fmt::print("results {}/results.xdmf (open in ParaView), summary {}/summary.json\n", out.string(),
+               out.string());
+  return r.exitCode();
+}
+
+int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
+  const fs::path refFile = caseDir / "reference.yaml";
+  if (!fs::exists(refFile)) throw fsi::InputError(fmt::format("{}: no such file", refFile.string()));
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(refFile.string());
+  } catch (const YAML::Exception& e) {
+    throw fsi::InputError(fmt::format("{}: {}", refFile.string(), e.what()));
+  }
+  YamlMap top(root, refFile.string(), "");
+  const std::string source = top.string("reference");
+  const YAML::Node checks = top.raw("checks");
+  top.finish({"reference", "checks"});
+  if (!checks || !checks.IsSequence() || checks.size() == 0) top.fail("'checks' must be a non-empty list");
+  if (out.empty()) out = fs::path("results") / caseDir.filename();
+  int failures = 0;
+  fmt::print("validate {}  (reference: {})\n", caseDir.string(), source);
+  fmt::print("  {:<34} {:>14} {:>14} {:>9} {:>8}  {}\n", "check", "computed", "expected", "error", "tol",
+             "");
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    YamlMap c(checks[i], refFile.string(), fmt::format("checks[{}]", i));
+    const std::string label = c.string("label");
+    const std::string sceneName = c.string("scene");
+    std::vector<std::string> sets;
+    if (c.has("set")) sets = c.strings("set");
+    const std::string probe = c.string("probe");
+    const double expect = c.number("expect");
+    const double relTol = c.number("rel_tol");
+    c.finish({"label", "scene", "set", "probe", "expect", "rel_tol"});
+    Scene scene = loadScene(caseDir / sceneName, sets);
+    RunOptions opt;
+    opt.outDir = out / fmt::format("check{}", i);
+    opt.quiet = quiet;
+    const RunResult r = runSimulation(scene, opt);
+    const auto it = r.probes.find(probe);
+    if (it == r.probes.end()) c.failAt("probe", fmt::format("the scene defines no probe '{}'", probe));
+    const double err = std::abs(it->second - expect) / std::abs(expect);
+    const bool ok = r.exitCode() == 0 && err <= relTol;
+    failures += ok ? 0 : 1;
+    fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n", label, it->second, expect, 100 * err,
+               100 * relTol, ok ? "ok" : "FAIL", r.exitCode() ? " (" + toString(r.reason) + ")" : "");
+  }
+  fmt::print("{} of {} checks passed\n", checks.size() - failures, checks.size());
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fsi: explicit membrane/cable structures and their coupling to flow solvers"};
+  app.require_subcommand(1);
+
+  auto* run = app.add_subcommand("run", "run a scene and write results, probes and statistics");
+  fs::path scenePath, outDir;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  run->add_option("scene", scenePath, "scene YAML file")->required();
+  run->add_option("--out,-o", outDir, "output directory")->required();
+  run->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
+  run->add_flag("--quiet,-q", quiet, "no progress output");
+
+  auto* validate = app.add_subcommand("validate", "run a case's reference checks (CASE/reference.yaml)");
+  fs::path caseDir, valOut;
+  validate->add_option("case", caseDir, "case directory")->required();
+  validate->add_option("--out,-o", valOut, "output directory (default results/<case>)");
+  validate->add_flag("--quiet,-q", quiet, "no progress output");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run) return runCommand(scenePath, outDir, sets, quiet);
+    if (*validate) return validateCommand(caseDir, valOut, quiet);
+  } catch (const fsi::InputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs every build/run/test dependency from Debian 12 packages.
+# Idempotent: when every package is already present it only runs dpkg-query (< 1 s).
+set -euo pipefail
+
+packages=(
+  cmake g++ ninja-build pkg-config
+  libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
+  libhdf5-dev hdf5-tools libgmsh-dev gmsh
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-numpy python3-matplotlib python3-h5py
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "[install-deps] all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "[install-deps] installing: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "[install-deps] done"

@@ -1,0 +1,55 @@
+#include "structure/effects/ExternalLoads.hpp"
+
+namespace fsi::structure {
+
+FollowerPressure::FollowerPressure(std::string label, std::vector<int> triangleConn, double value,
+                                   TimeFunction f)
+    : label_(std::move(label)), conn_(std::move(triangleConn)), value_(value), fn_(std::move(f)) {}
+
+void FollowerPressure::addForces(ForceContext& ctx) const {
+  const double p6 = valueAt(ctx.time) / 6.0;  // p A n / 3 = p (d21 x d31) / 6
+  if (p6 == 0.0) return;
+  const double* __restrict x = ctx.x;
+  double* __restrict f = ctx.fext;
+  const int ne = int(conn_.size() / 3);
+  for (int e = 0; e < ne; ++e) {
+    const int* n = &conn_[3 * e];
+    const double* p1 = x + 3 * n[0];
+    const double* p2 = x + 3 * n[1];
+    const double* p3 = x + 3 * n[2];
+    const double a[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
+    const double b[3] = {p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]};
+    const double c[3] = {p6 * (a[1] * b[2] - a[2] * b[1]), p6 * (a[2] * b[0] - a[0] * b[2]),
+                         p6 * (a[0] * b[1] - a[1] * b[0])};
+    for (int k = 0; k < 3; ++k) {
+      f[3 * n[0] + k] += c[k];
+      f[3 * n[1] + k] += c[k];
+      f[3 * n[2] + k] += c[k];
+    }
+  }
+}
+
+Gravity::Gravity(const std::vector<double>& physicalMass, std::array<double, 3> g, TimeFunction f)
+    : weight_(3 * physicalMass.size()), fn_(std::move(f)) {
+  for (std::size_t i = 0; i < physicalMass.size(); ++i)
+    for (int k = 0; k < 3; ++k) weight_[3 * i + k] = physicalMass[i] * g[k];
+}
+
+void Gravity::addForces(ForceContext& ctx) const {
+  const double s = fn_(ctx.time);
+  double* __restrict f = ctx.fext;
+  const std::size_t n = weight_.size();
+  for (std::size_t i = 0; i < n; ++i) f[i] += s * weight_[i];
+}
+
+NodalForces::NodalForces(std::string label, std::vector<int> nodes, std::array<double, 3> force,
+                         TimeFunction f)
+    : label_(std::move(label)), nodes_(std::move(nodes)), force_(force), fn_(std::move(f)) {}
+
+void NodalForces::addForces(ForceContext& ctx) const {
+  const double s = fn_(ctx.time);
+  for (int n : nodes_)
+    for (int k = 0; k < 3; ++k) ctx.fext[3 * n + k] += s * force_[k];
+}
+
+}  // namespace fsi::structure

@@ -1,0 +1,127 @@
+#include "structure/integrate/CentralDifference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fsi::structure {
+
+CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> effects, Constraints constraints,
+                                     CentralDifferenceSettings settings, double startTime)
+    : model_(model),
+      effects_(std::move(effects)),
+      constraints_(std::move(constraints)),
+      settings_(settings),
+      time_(startTime) {
+  constraints_.applyTo(model_.nodes);
+  const Nodes& N = model_.nodes;
+  double ke = 0;
+  for (int i = 0; i < N.count; ++i)
+    for (int k = 0; k < 3; ++k) ke += 0.5 * N.mass[i] * N.v[3 * i + k] * N.v[3 * i + k];
+  ledger_.initialKinetic = ledger_.kinetic = ke;
+}
+
+double CentralDifference::computeForces(bool withEnergy) {
+  Nodes& N = model_.nodes;
+  std::fill(N.fint.begin(), N.fint.end(), 0.0);
+  std::fill(N.fext.begin(), N.fext.end(), 0.0);
+  ForceContext ctx;
+  ctx.time = time_;
+  ctx.x = N.x.data();
+  ctx.v = N.v.data();
+  ctx.fint = N.fint.data();
+  ctx.fext = N.fext.data();
+  ctx.wantEnergy = withEnergy;
+  for (const Effect* e : effects_) e->addForces(ctx);
+  if (withEnergy) ledger_.strain = ctx.strainEnergy;
+  stableDt_ = ctx.minStableDt;
+  return ctx.minStableDt;
+}
+
+void CentralDifference::evaluateForces(bool withEnergy) { computeForces(withEnergy); }
+
+bool CentralDifference::step(double limitTime, bool monitor) {
+  Nodes& N = model_.nodes;
+  const double stable = computeForces(monitor);
+  double dtNext = settings_.fixedDt > 0 ? settings_.fixedDt : std::min(settings_.safety * stable, settings_.maxDt);
+  if (!(dtNext > 0) || !std::isfinite(dtNext)) dtNext = settings_.maxDt < 1e299 ? settings_.maxDt : 0.0;
+  if (!(dtNext > 0)) return false;  // no element bounds the step and no maximum is set: nothing to integrate
+  // Land exactly on the limit; avoid a sliver step just before it.
+  const double remaining = limitTime - time_;
+  if (remaining <= dtNext * (1.0 + 1e-9)) dtNext = remaining;
+  else if (remaining < 1.5 * dtNext) dtNext = 0.5 * remaining;
+  const double dtAvg = 0.5 * (dt_ + dtNext);
+  const double a = settings_.massDamping;
+  const double c1 = 1.0 - 0.5 * a * dtAvg;
+  const double c2 = 1.0 / (1.0 + 0.5 * a * dtAvg);
+
+  double* __restrict x = N.x.data();
+  double* __restrict v = N.v.data();
+  const double* __restrict fi = N.fint.data();
+  const double* __restrict fe = N.fext.data();
+  const double* __restrict im = N.invMassDof.data();
+  const double* __restrict m = N.mass.data();
+  double ke = 0, wExt = 0, wInt = 0, damp = 0;
+  const double dtOld = dt_;
+  for (int i = 0; i < N.count; ++i) {
+    double keNode = 0, dampNode = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int d = 3 * i + k;
+      const double vOld = v[d];
+      const double vNew = (c1 * vOld + dtAvg * im[d] * (fe[d] - fi[d])) * c2;
+      const double travel = 0.5 * (dtOld * vOld + dtNext * vNew);  // half of the path before and after x(n)
+      wExt += fe[d] * travel;
+      wInt += fi[d] * travel;
+      const double vMid = 0.5 * (vOld + vNew);
+      keNode += vMid * vMid;
+      dampNode += vMid * vMid;
+      v[d] = vNew;
+      x[d] += dtNext * vNew;
+    }
+    ke += 0.5 * m[i] * keNode;
+    damp += m[i] * dampNode;
+  }
+
+  // Prescribed motions: set the position, derive the velocity, book the reaction's work.
+  for (const PrescribedMotion& p : constraints_.prescribed) {
+    const int d = 3 * p.node + p.component;
+    const double xOld = x[d] - dtNext * v[d];
+    const double target = N.X[d] + p.amplitude * p.fn(time_ + dtNext);
+    const double vOld = v[d];
+    v[d] = (target - xOld) / dtNext;
+    x[d] = target;
+    const double reaction = fi[d] - fe[d];  // force the support applies, static part
+    wExt += reaction * dtNext * v[d];
+    ke += 0.5 * m[p.node] * (0.25 * (vOld + v[d]) * (vOld + v[d]) - vOld * vOld);
+  }
+  // Oblique symmetry planes: remove the normal component of velocity and of the step just taken.
+  for (const PlaneSlider& s : constraints_.sliders) {
+    double* vv = v + 3 * s.node;
+    double* xx = x + 3 * s.node;
+    const double vn = vv[0] * s.normal[0] + vv[1] * s.normal[1] + vv[2] * s.normal[2];
+    for (int k = 0; k < 3; ++k) {
+      vv[k] -= vn * s.normal[k];
+      xx[k] -= dtNext * vn * s.normal[k];
+    }
+  }
+
+  ledger_.kinetic = ke;
+  ledger_.externalWork += wExt;
+  ledger_.internalWork += wInt;
+  ledger_.massDamping += a * damp * dtAvg;
+  time_ += dtNext;
+  dt_ = dtNext;
+  ++steps_;
+  return std::isfinite(ke) && std::isfinite(wInt);
+}
+
+void CentralDifference::restore(const std::vector<double>& x, const std::vector<double>& v, double time,
+                                double dt, long steps) {
+  model_.nodes.x = x;
+  model_.nodes.v = v;
+  time_ = time;
+  dt_ = dt;
+  steps_ = steps;
+}
+
+}  // namespace fsi::structure

@@ -1,0 +1,36 @@
+#pragma once
+// Kinematic constraints. Fixed dofs cost nothing in the step loop: their inverse mass is set to zero, so the
+// update leaves them at rest. Prescribed motions and sliding on an oblique plane are small post-passes over
+// their own node lists.
+
+#include <array>
+#include <vector>
+
+#include "structure/effects/TimeFunction.hpp"
+#include "structure/model/Model.hpp"
+
+namespace fsi::structure {
+
+struct PrescribedMotion {
+  int node = 0;
+  int component = 0;     ///< 0, 1, 2 = x, y, z
+  double amplitude = 0;  ///< u(t) = amplitude·f(t) added to the reference coordinate
+  TimeFunction fn;
+};
+
+/// A node that may only move within a plane (symmetry plane with an oblique normal).
+struct PlaneSlider {
+  int node = 0;
+  std::array<double, 3> normal{0, 0, 1};  ///< unit normal
+};
+
+struct Constraints {
+  std::vector<int> fixedDofs;  ///< 3*node + component
+  std::vector<PrescribedMotion> prescribed;
+  std::vector<PlaneSlider> sliders;
+
+  /// Zeroes the inverse mass of fixed and prescribed dofs and the velocity of fixed dofs.
+  void applyTo(Nodes& nodes) const;
+};
+
+}  // namespace fsi::structure

@@ -1,0 +1,542 @@
+#include "structure/io/ResultsWriter.hpp"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+namespace fsi::structure {
+namespace {
+
+namespace fs = std::filesystem;
+
+static_assert(sizeof(std::array<int, 3>) == 3 * sizeof(int) && sizeof(std::array<int, 2>) == 2 * sizeof(int),
+              "connectivity arrays are written as contiguous int blocks");
+
+// Owns one HDF5 identifier and releases it with the matching close function.
+class Hid {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Hid() = default;
+  Hid(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Hid(Hid&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
+  Hid& operator=(Hid&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, H5I_INVALID_HID);
+      closer_ = other.closer_;
+    }
+    return *this;
+  }
+  Hid(const Hid&) = delete;
+  Hid& operator=(const Hid&) = delete;
+  ~Hid() { reset(); }
+
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  // Explicit close so that a failure (e.g. the final write of a file) can be reported.
+  herr_t close() { return valid() ? closer_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
+
+ private:
+  void reset() noexcept {
+    if (valid()) closer_(std::exchange(id_, H5I_INVALID_HID));
+  }
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+// Turns off HDF5's automatic stack printing for the scope (we report errors ourselves) and restores the
+// caller's setting afterwards, so other HDF5 users in the process are unaffected.
+class QuietHdf5 {
+ public:
+  QuietHdf5() {
+    if (H5Eget_auto2(H5E_DEFAULT, &func_, &data_) >= 0) {
+      saved_ = true;
+      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    }
+  }
+  ~QuietHdf5() {
+    if (saved_) H5Eset_auto2(H5E_DEFAULT, func_, data_);
+  }
+  QuietHdf5(const QuietHdf5&) = delete;
+  QuietHdf5& operator=(const QuietHdf5&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+  bool saved_ = false;
+};
+
+// Innermost description on the HDF5 error stack; must run before the next HDF5 call clears the stack.
+std::string hdf5Detail() {
+  std::string text;
+  auto collect = [](unsigned n, const H5E_error2_t* err, void* out) -> herr_t {
+    if (n == 0 && err != nullptr && err->desc != nullptr) *static_cast<std::string*>(out) = err->desc;
+    return 0;
+  };
+  if (H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, collect, &text) < 0 || text.empty()) return {};
+  return " (HDF5: " + text + ")";
+}
+
+// Error context: every failure names the file and the object concerned.
+struct Context {
+  const fs::path& file;
+
+  // An empty object means the file itself.
+  [[noreturn]] void fail(const std::string& what, const std::string& object) const {
+    const std::string where = object.empty() ? fmt::format("'{}'", file.string())
+                                             : fmt::format("'{}' in '{}'", object, file.string());
+    throw std::runtime_error(fmt::format("ResultsWriter: {} {}{}", what, where, hdf5Detail()));
+  }
+  Hid check(hid_t id, Hid::Closer closer, const char* what, const std::string& object) const {
+    if (id < 0) fail(what, object);
+    return Hid(id, closer);
+  }
+  void check(herr_t status, const char* what, const std::string& object) const {
+    if (status < 0) fail(what, object);
+  }
+
+  Hid createGroup(hid_t parent, const std::string& name, const std::string& fullName) const {
+    return check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                 "cannot create group", fullName);
+  }
+
+  // Contiguous layout on purpose: output writes are large and rare, chunking/compression would only cost.
+  Hid writeDataset(hid_t parent, const std::string& name, const std::string& fullName, hid_t fileType,
+                   hid_t memType, const void* data, const std::vector<hsize_t>& dims) const {
+    const Hid space = check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
+                            "cannot create dataspace for", fullName);
+    Hid dset =
+        check(H5Dcreate2(parent, name.c_str(), fileType, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+              H5Dclose, "cannot create dataset", fullName);
+    hsize_t total = 1;
+    for (const hsize_t d : dims) total *= d;
+    if (total > 0) {
+      check(H5Dwrite(dset.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset",
+            fullName);
+    }
+    return dset;
+  }
+
+  template <typename T>
+  void writeScalarAttribute(hid_t object, const char* name, hid_t fileType, hid_t memType, const T& value,
+                            const std::string& objectName) const {
+    const std::string full = objectName + "@" + name;
+    const Hid space = check(H5Screate(H5S_SCALAR), H5Sclose, "cannot create dataspace for", full);
+    const Hid attr = check(H5Acreate2(object, name, fileType, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                           H5Aclose, "cannot create attribute", full);
+    check(H5Awrite(attr.get(), memType, &value), "cannot write attribute", full);
+  }
+
+  void writeStringAttribute(hid_t object, const char* name, const std::string& value,
+                            const std::string& objectName) const {
+    const std::string full = objectName + "@" + name;
+    const Hid type = check(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create string type for", full);
+    check(H5Tset_size(type.get(), value.size() + 1), "cannot size string type for", full);  // with the NUL
+    const Hid space = check(H5Screate(H5S_SCALAR), H5Sclose, "cannot create dataspace for", full);
+    const Hid attr = check(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                           H5Aclose, "cannot create attribute", full);
+    check(H5Awrite(attr.get(), type.get(), value.c_str()), "cannot write attribute", full);
+  }
+};
+
+const char* centerName(FieldView::Center c) {
+  switch (c) {
+    case FieldView::Center::Node:
+      return "Node";
+    case FieldView::Center::Triangle:
+      return "Triangle";
+    case FieldView::Center::Line:
+      return "Line";
+  }
+  return "?";
+}
+
+const char* attributeType(int components) {
+  switch (components) {
+    case 1:
+      return "Scalar";
+    case 3:
+      return "Vector";
+    default:
+      return "Tensor6";
+  }
+}
+
+// HDF5 link names may not contain '/', and "." names the parent itself.
+void checkName(const std::string& name, const char* kind) {
+  if (name.empty() || name == "." || name.find('/') != std::string::npos) {
+    throw std::invalid_argument(
+        fmt::format("ResultsWriter: invalid {} name '{}' (must be non-empty, without '/')", kind, name));
+  }
+}
+
+std::string xmlEscape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string stepGroupName(std::size_t index) {
+  return fmt::format("{:06d}", index);
+}
+
+}  // namespace
+
+struct ResultsWriter::Impl {
+  struct FieldMeta {
+    std::string name;
+    FieldView::Center center;
+    int components;
+  };
+  struct StepRecord {
+    std::string group;  // 6-digit index below /steps
+    double time;
+    std::vector<FieldMeta> fields;
+  };
+
+  fs::path h5Path;
+  fs::path xdmfPath;
+  int numNodes = 0;
+  std::size_t numTriangles = 0;
+  std::size_t numLines = 0;
+  Hid file;
+  Hid steps;
+  Hid tables;
+  std::vector<StepRecord> records;
+
+  Context ctx() const { return Context{h5Path}; }
+
+  std::size_t count(FieldView::Center c) const {
+    switch (c) {
+      case FieldView::Center::Node:
+        return static_cast<std::size_t>(numNodes);
+      case FieldView::Center::Triangle:
+        return numTriangles;
+      case FieldView::Center::Line:
+        return numLines;
+    }
+    return 0;
+  }
+
+  void requireOpen(const char* operation) const {
+    if (!file.valid()) {
+      throw std::logic_error(
+          fmt::format("ResultsWriter::{} called after close() for '{}'", operation, h5Path.string()));
+    }
+  }
+
+  void flush() const { ctx().check(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "cannot flush", ""); }
+
+  void writeXdmf() const;
+
+  // Groups first, the file last; the flush status is checked because it performs the final metadata write.
+  void close() {
+    if (!file.valid()) return;
+    const QuietHdf5 quiet;
+    std::string error;
+    auto note = [&error](herr_t status, const char* what) {
+      if (status < 0 && error.empty()) error = what + hdf5Detail();
+    };
+    note(steps.close(), "cannot close /steps");
+    note(tables.close(), "cannot close /tables");
+    note(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "cannot flush");
+    note(file.close(), "cannot close");
+    if (!error.empty())
+      throw std::runtime_error(fmt::format("ResultsWriter: {} in '{}'", error, h5Path.string()));
+  }
+
+  ~Impl() {
+    try {
+      close();
+    } catch (...) {
+      // Never throw from a destructor; callers who need to know call close() themselves.
+    }
+  }
+};
+
+void ResultsWriter::Impl::writeXdmf() const {
+  const std::string h5Name = xmlEscape(h5Path.filename().string());  // relative: the folder may be moved
+  const std::size_t n = static_cast<std::size_t>(numNodes);
+  std::string x;
+  auto out = std::back_inserter(x);
+  auto dataItem = [&](const std::string& dims, const char* type, int precision, const std::string& path,
+                      int indent) {
+    fmt::format_to(out,
+                   "{:{}}<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" "
+                   "Format=\"HDF\">{}:{}</DataItem>\n",
+                   "", indent, dims, type, precision, h5Name, xmlEscape(path));
+  };
+
+  x += "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";
+  x += "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n  <Domain>\n";
+  x += "    <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const StepRecord& r : records) {
+    const std::string time = fmt::format("{}", r.time);  // shortest representation that round-trips
+    const std::string stepPath = "/steps/" + r.group;
+    fmt::format_to(out, "      <Grid Name=\"step_{}\" GridType=\"Collection\" CollectionType=\"Spatial\">\n",
+                   r.group);
+    fmt::format_to(out, "        <Time Value=\"{}\"/>\n", time);
+
+    auto grid = [&](const char* name, const char* topology, int nodesPerElement, std::size_t numElements,
+                    const char* connectivity, FieldView::Center cellCenter) {
+      fmt::format_to(out, "        <Grid Name=\"{}\" GridType=\"Uniform\">\n", name);
+      fmt::format_to(out, "          <Time Value=\"{}\"/>\n", time);
+      fmt::format_to(
+          out, "          <Topology TopologyType=\"{}\" NumberOfElements=\"{}\" NodesPerElement=\"{}\">\n",
+          topology, numElements, nodesPerElement);
+      dataItem(fmt::format("{} {}", numElements, nodesPerElement), "Int", 4, connectivity, 12);
+      x += "          </Topology>\n          <Geometry GeometryType=\"XYZ\">\n";
+      dataItem(fmt::format("{} 3", n), "Float", 8, stepPath + "/coordinates", 12);
+      x += "          </Geometry>\n";
+      for (const FieldMeta& f : r.fields) {
+        if (f.center != FieldView::Center::Node && f.center != cellCenter) continue;
+        const std::size_t cnt = count(f.center);
+        fmt::format_to(out, "          <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n",
+                       xmlEscape(f.name), attributeType(f.components),
+                       f.center == FieldView::Center::Node ? "Node" : "Cell");
+        dataItem(f.components == 1 ? fmt::format("{}", cnt) : fmt::format("{} {}", cnt, f.components),
+                 "Float", 8, stepPath + "/" + f.name, 12);
+        x += "          </Attribute>\n";
+      }
+      x += "        </Grid>\n";
+    };
+    if (numTriangles > 0) {
+      grid("membranes", "Triangle", 3, numTriangles, "/mesh/triangles", FieldView::Center::Triangle);
+    }
+    if (numLines > 0) grid("cables", "Polyline", 2, numLines, "/mesh/lines", FieldView::Center::Line);
+    x += "      </Grid>\n";
+  }
+  x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
+
+  // Replace atomically so that a reader (or a crash) never sees a half-written index.
+  fs::path tmp = xdmfPath;
+  tmp += ".tmp";
+  {
+    std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
+    os.write(x.data(), static_cast<std::streamsize>(x.size()));
+    os.close();
+    if (!os) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+      throw std::runtime_error(fmt::format("ResultsWriter: cannot write '{}'", tmp.string()));
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, xdmfPath, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw std::runtime_error(fmt::format("ResultsWriter: cannot rename '{}' to '{}': {}", tmp.string(),
+                                         xdmfPath.string(), ec.message()));
+  }
+}
+
+ResultsWriter::ResultsWriter(fs::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
+                             std::vector<std::array<int, 2>> lines)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  if (numNodes < 0) throw std::invalid_argument("ResultsWriter: negative node count");
+  auto checkConnectivity = [numNodes](const auto& elements, const char* kind) {
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+      for (const int node : elements[e]) {
+        if (node < 0 || node >= numNodes) {
+          throw std::invalid_argument(fmt::format("ResultsWriter: {} {} references node {} outside [0, {})",
+                                                  kind, e, node, numNodes));
+        }
+      }
+    }
+  };
+  checkConnectivity(triangles, "triangle");
+  checkConnectivity(lines, "line");
+
+  m.h5Path = std::move(h5File);
+  m.xdmfPath = m.h5Path;
+  m.xdmfPath.replace_extension(".xdmf");
+  m.numNodes = numNodes;
+  m.numTriangles = triangles.size();
+  m.numLines = lines.size();
+
+  if (m.h5Path.has_parent_path()) {
+    std::error_code ec;
+    fs::create_directories(m.h5Path.parent_path(), ec);
+    if (ec) {
+      throw std::runtime_error(fmt::format("ResultsWriter: cannot create directory '{}': {}",
+                                           m.h5Path.parent_path().string(), ec.message()));
+    }
+  }
+
+  const QuietHdf5 quiet;
+  const Context c = m.ctx();
+  m.file = c.check(H5Fcreate(m.h5Path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                   "cannot create file", "");
+  c.writeScalarAttribute(m.file.get(), "num_nodes", H5T_STD_I64LE, H5T_NATIVE_LLONG,
+                         static_cast<long long>(numNodes), "/");
+  {
+    const Hid mesh = c.createGroup(m.file.get(), "mesh", "/mesh");
+    c.writeDataset(mesh.get(), "triangles", "/mesh/triangles", H5T_STD_I32LE, H5T_NATIVE_INT,
+                   triangles.data(), {m.numTriangles, 3});
+    c.writeDataset(mesh.get(), "lines", "/mesh/lines", H5T_STD_I32LE, H5T_NATIVE_INT, lines.data(),
+                   {m.numLines, 2});
+  }
+  m.steps = c.createGroup(m.file.get(), "steps", "/steps");
+  m.tables = c.createGroup(m.file.get(), "tables", "/tables");
+  m.flush();
+  m.writeXdmf();  // an empty but valid index replaces any stale one from a previous run
+}
+
+ResultsWriter::~ResultsWriter() = default;  // Impl closes the file
+ResultsWriter::ResultsWriter(ResultsWriter&&) noexcept = default;
+ResultsWriter& ResultsWriter::operator=(ResultsWriter&&) noexcept = default;
+
+void ResultsWriter::writeStep(double time, long step, const double* coordinates,
+                              const std::vector<FieldView>& fields) {
+  Impl& m = *impl_;
+  m.requireOpen("writeStep");
+  if (!std::isfinite(time))
+    throw std::invalid_argument(fmt::format("ResultsWriter: non-finite time {}", time));
+  if (coordinates == nullptr && m.numNodes > 0)
+    throw std::invalid_argument("ResultsWriter: null coordinates");
+
+  // Validate everything before touching the file so that a bad call leaves no partial step behind.
+  std::set<std::string> names;
+  for (const FieldView& f : fields) {
+    checkName(f.name, "field");
+    if (f.name == "coordinates" || !names.insert(f.name).second) {
+      throw std::invalid_argument(
+          fmt::format("ResultsWriter: field '{}' is reserved or given twice", f.name));
+    }
+    if (f.components != 1 && f.components != 3 && f.components != 6) {
+      throw std::invalid_argument(fmt::format(
+          "ResultsWriter: field '{}' has {} components; expected 1, 3 or 6", f.name, f.components));
+    }
+    const std::size_t expected = m.count(f.center) * static_cast<std::size_t>(f.components);
+    if (f.size != FieldView::kUnknownSize && f.size != expected) {
+      throw std::invalid_argument(fmt::format(
+          "ResultsWriter: field '{}' has {} values but {} {}-centred entities x {} components need {}",
+          f.name, f.size, m.count(f.center), centerName(f.center), f.components, expected));
+    }
+    if (f.data == nullptr && expected > 0) {
+      throw std::invalid_argument(fmt::format("ResultsWriter: field '{}' has no data", f.name));
+    }
+  }
+
+  const QuietHdf5 quiet;
+  const Context c = m.ctx();
+  Impl::StepRecord record{stepGroupName(m.records.size()), time, {}};
+  const std::string groupPath = "/steps/" + record.group;
+  try {
+    const Hid group = c.createGroup(m.steps.get(), record.group, groupPath);
+    c.writeScalarAttribute(group.get(), "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, time, groupPath);
+    c.writeScalarAttribute(group.get(), "step", H5T_STD_I64LE, H5T_NATIVE_LLONG, static_cast<long long>(step),
+                           groupPath);
+    const hsize_t n = static_cast<hsize_t>(m.numNodes);
+    c.writeDataset(group.get(), "coordinates", groupPath + "/coordinates", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                   coordinates, {n, 3});
+    for (const FieldView& f : fields) {
+      const std::string path = groupPath + "/" + f.name;
+      std::vector<hsize_t> dims{m.count(f.center)};
+      if (f.components > 1) dims.push_back(static_cast<hsize_t>(f.components));
+      const Hid dset =
+          c.writeDataset(group.get(), f.name, path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.data, dims);
+      c.writeStringAttribute(dset.get(), "center", centerName(f.center), path);
+      if (f.components == 6) c.writeStringAttribute(dset.get(), "component_order", "xx yy zz xy yz xz", path);
+      record.fields.push_back({f.name, f.center, f.components});
+    }
+  } catch (...) {
+    // Drop the partial group so that the index can be reused; best effort, the original error matters.
+    H5Ldelete(m.steps.get(), record.group.c_str(), H5P_DEFAULT);
+    throw;
+  }
+  m.flush();
+  m.records.push_back(std::move(record));
+  try {
+    m.writeXdmf();
+  } catch (...) {
+    // Forget the step entirely so that the next call can reuse its index.
+    H5Ldelete(m.steps.get(), m.records.back().group.c_str(), H5P_DEFAULT);
+    m.records.pop_back();
+    throw;
+  }
+}
+
+void ResultsWriter::writeTable(const std::string& name, const std::vector<std::string>& columns,
+                               const std::vector<std::vector<double>>& data) {
+  Impl& m = *impl_;
+  m.requireOpen("writeTable");
+  checkName(name, "table");
+  if (columns.size() != data.size()) {
+    throw std::invalid_argument(fmt::format("ResultsWriter: table '{}' has {} column names but {} columns",
+                                            name, columns.size(), data.size()));
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    checkName(columns[i], "column");
+    if (!names.insert(columns[i]).second) {
+      throw std::invalid_argument(
+          fmt::format("ResultsWriter: table '{}' repeats column '{}'", name, columns[i]));
+    }
+    if (data[i].size() != data.front().size()) {
+      throw std::invalid_argument(
+          fmt::format("ResultsWriter: table '{}' column '{}' has {} rows, column '{}' has {}", name,
+                      columns[i], data[i].size(), columns.front(), data.front().size()));
+    }
+  }
+
+  const QuietHdf5 quiet;
+  const Context c = m.ctx();
+  const std::string groupPath = "/tables/" + name;
+  // Histories are rewritten whole at each output; the old copy's space is not reclaimed, which is negligible.
+  const htri_t exists = H5Lexists(m.tables.get(), name.c_str(), H5P_DEFAULT);
+  if (exists < 0) c.fail("cannot query", groupPath);
+  if (exists > 0) c.check(H5Ldelete(m.tables.get(), name.c_str(), H5P_DEFAULT), "cannot replace", groupPath);
+  const Hid group = c.createGroup(m.tables.get(), name, groupPath);
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    c.writeDataset(group.get(), columns[i], groupPath + "/" + columns[i], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                   data[i].data(), {data[i].size()});
+  }
+  m.flush();
+}
+
+void ResultsWriter::close() {
+  if (impl_) impl_->close();
+}
+
+int ResultsWriter::stepsWritten() const {
+  return static_cast<int>(impl_->records.size());
+}
+const fs::path& ResultsWriter::h5Path() const {
+  return impl_->h5Path;
+}
+const fs::path& ResultsWriter::xdmfPath() const {
+  return impl_->xdmfPath;
+}
+
+}  // namespace fsi::structure

@@ -1,0 +1,72 @@
+#pragma once
+// ResultsWriter: time series of the structure (moving mesh + fields) in one HDF5 file, indexed by an XDMF 3
+// file next to it so that ParaView (Xdmf3 readers) opens the run directly.
+//
+// HDF5 layout:
+//   /mesh/triangles            (nt x 3, int32)   written once
+//   /mesh/lines                (nl x 2, int32)   written once
+//   /steps/<000000>/           attributes time (double), step (int64)
+//   /steps/<000000>/coordinates (N x 3, double)
+//   /steps/<000000>/<field>     (count) or (count x components), double; attribute center
+//   /tables/<name>/<column>     (rows), double
+//
+// Crash safety: after every writeStep/writeTable the HDF5 file is flushed and only then is the XDMF index
+// replaced (temporary file + rename), so the index never references data that is not on disk.
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi::structure {
+
+/// Non-owning view of one output field. Symmetric tensors (6 components) use the order xx yy zz xy yz xz,
+/// which ParaView's Xdmf3 readers pass through unchanged and label XX YY ZZ XY YZ XZ (its legacy "XDMF
+/// Reader" would assume xx xy xz yy yz zz instead; the datasets carry a component_order attribute).
+struct FieldView {
+  enum class Center { Node, Triangle, Line };
+  static constexpr std::size_t kUnknownSize = static_cast<std::size_t>(-1);
+
+  std::string name;
+  Center center = Center::Node;
+  int components = 1;            ///< 1 (scalar), 3 (vector) or 6 (symmetric tensor)
+  const double* data = nullptr;  ///< count(center) * components values, row-major
+  /// Number of doubles behind data, if the caller knows it; writeStep then checks it against the mesh.
+  std::size_t size = kUnknownSize;
+};
+
+class ResultsWriter {
+ public:
+  /// Creates (truncates) h5File and writes the mesh connectivity; the XDMF index is h5File with extension
+  /// .xdmf. Throws std::invalid_argument for out-of-range connectivity, std::runtime_error on I/O failure.
+  ResultsWriter(std::filesystem::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
+                std::vector<std::array<int, 2>> lines);
+  ~ResultsWriter();
+  ResultsWriter(ResultsWriter&&) noexcept;
+  ResultsWriter& operator=(ResultsWriter&&) noexcept;
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  /// Appends one output step. coordinates: 3*numNodes values, xyz interleaved. Field names must be unique,
+  /// non-empty, without '/' and other than "coordinates"; violations throw std::invalid_argument.
+  void writeStep(double time, long step, const double* coordinates, const std::vector<FieldView>& fields);
+
+  /// Stores (or replaces) /tables/<name>; data[i] is the column named columns[i], all of equal length.
+  void writeTable(const std::string& name, const std::vector<std::string>& columns,
+                  const std::vector<std::vector<double>>& data);
+
+  /// Flushes and closes the file; idempotent. Later writes throw std::logic_error.
+  void close();
+
+  int stepsWritten() const;
+  const std::filesystem::path& h5Path() const;
+  const std::filesystem::path& xdmfPath() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fsi::structure

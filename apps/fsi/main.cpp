@@ -49,34 +49,41 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   top.finish({"reference", "checks"});
   if (!checks || !checks.IsSequence() || checks.size() == 0) top.fail("'checks' must be a non-empty list");
   if (out.empty()) out = fs::path("results") / caseDir.filename();
-  int failures = 0;
+  std::size_t failures = 0;
   fmt::print("validate {}  (reference: {})\n", caseDir.string(), source);
   fmt::print("  {:<34} {:>14} {:>14} {:>9} {:>8}  {}\n", "check", "computed", "expected", "error", "tol",
              "");
+  std::size_t total = 0;
   for (std::size_t i = 0; i < checks.size(); ++i) {
     YamlMap c(checks[i], refFile.string(), fmt::format("checks[{}]", i));
     const std::string label = c.string("label");
     const std::string sceneName = c.string("scene");
     std::vector<std::string> sets;
     if (c.has("set")) sets = c.strings("set");
-    const std::string probe = c.string("probe");
-    const double expect = c.number("expect");
-    const double relTol = c.number("rel_tol");
-    c.finish({"label", "scene", "set", "probe", "expect", "rel_tol"});
+    YamlMap expects = c.map("expect");
+    c.finish({"label", "scene", "set", "expect"});
     Scene scene = loadScene(caseDir / sceneName, sets);
     RunOptions opt;
     opt.outDir = out / fmt::format("check{}", i);
     opt.quiet = quiet;
     const RunResult r = runSimulation(scene, opt);
-    const auto it = r.probes.find(probe);
-    if (it == r.probes.end()) c.failAt("probe", fmt::format("the scene defines no probe '{}'", probe));
-    const double err = std::abs(it->second - expect) / std::abs(expect);
-    const bool ok = r.exitCode() == 0 && err <= relTol;
-    failures += ok ? 0 : 1;
-    fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n", label, it->second, expect, 100 * err,
-               100 * relTol, ok ? "ok" : "FAIL", r.exitCode() ? " (" + toString(r.reason) + ")" : "");
+    for (const std::string& probe : expects.keys()) {
+      YamlMap e = expects.map(probe);
+      const double value = e.number("value");
+      const double relTol = e.number("rel_tol");
+      e.finish({"value", "rel_tol"});
+      const auto it = r.probes.find(probe);
+      if (it == r.probes.end()) expects.failAt(probe, fmt::format("the scene defines no probe '{}'", probe));
+      const double err = std::abs(it->second - value) / std::abs(value);
+      const bool ok = r.exitCode() == 0 && err <= relTol;
+      failures += ok ? 0 : 1;
+      ++total;
+      fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n", label + ": " + probe, it->second,
+                 value, 100 * err, 100 * relTol, ok ? "ok" : "FAIL",
+                 r.exitCode() ? " (" + toString(r.reason) + ")" : "");
+    }
   }
-  fmt::print("{} of {} checks passed\n", checks.size() - failures, checks.size());
+  fmt::print("{} of {} checks passed\n", total - failures, total);
   return failures == 0 ? 0 : 1;
 }
 

@@ -86,6 +86,13 @@ std::map<std::string, double> evaluateProbes(const Scene& scene) {
   for (const ProbeSpec& p : scene.probes) {
     std::vector<double> vals;
     switch (p.type) {
+      case ProbeSpec::Type::Position:
+        for (int n : p.nodes) {
+          double r[3];
+          for (int k = 0; k < 3; ++k) r[k] = N.x[3 * n + k] - (p.component == 4 ? p.center[k] : 0.0);
+          vals.push_back(componentOf(r, p.component == 4 ? 3 : p.component));
+        }
+        break;
       case ProbeSpec::Type::Displacement:
         for (int n : p.nodes) {
           const double u[3] = {N.x[3 * n] - N.X[3 * n], N.x[3 * n + 1] - N.X[3 * n + 1],

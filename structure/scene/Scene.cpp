@@ -603,14 +603,14 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       YamlMap p = ps.map(name);
       ProbeSpec spec;
       spec.name = name;
-      const std::string type = p.choice("type", {"displacement", "reaction", "volume", "stress"});
+      const std::string type = p.choice("type", {"displacement", "position", "reaction", "volume", "stress"});
       const std::map<std::string, ProbeSpec::Reduce> reduces{{"value", ProbeSpec::Reduce::Value},
                                                              {"mean", ProbeSpec::Reduce::Mean},
                                                              {"max", ProbeSpec::Reduce::Max},
                                                              {"min", ProbeSpec::Reduce::Min},
                                                              {"sum", ProbeSpec::Reduce::Sum}};
-      if (type == "displacement") {
-        spec.type = ProbeSpec::Type::Displacement;
+      if (type == "displacement" || type == "position") {
+        spec.type = type == "position" ? ProbeSpec::Type::Position : ProbeSpec::Type::Displacement;
         spec.nodes = sets.nodes(p.raw("nodes"), p.childPath("nodes"));
         spec.component = componentIndex(p, "component", {"x", "y", "z", "magnitude", "radial"});
         spec.center = p.vec3("center", {0, 0, 0});

@@ -23,7 +23,7 @@
 namespace fsi::structure {
 
 struct ProbeSpec {
-  enum class Type { Displacement, Reaction, Volume, Stress };
+  enum class Type { Displacement, Position, Reaction, Volume, Stress };
   enum class Reduce { Value, Mean, Max, Min, Sum };
   std::string name;
   Type type = Type::Displacement;

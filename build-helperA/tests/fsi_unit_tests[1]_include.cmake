@@ -1,5 +1,0 @@
-if(EXISTS "/work/main/build-helperA/tests/fsi_unit_tests[1]_tests.cmake")
-  include("/work/main/build-helperA/tests/fsi_unit_tests[1]_tests.cmake")
-else()
-  add_test(fsi_unit_tests_NOT_BUILT fsi_unit_tests_NOT_BUILT)
-endif()

@@ -61,7 +61,8 @@ bool CentralDifference::step(double limitTime, bool monitor) {
   const double* __restrict fe = N.fext.data();
   const double* __restrict im = N.invMassDof.data();
   const double* __restrict m = N.mass.data();
-  double ke = 0, wExt = 0, wInt = 0, damp = 0;
+  // Trapezoidal work: W += ½(f(n−1) + f(n))·Δx(n). The f(n−1) half was computed last step (pending_).
+  double ke = 0, wExt = pendingExt_, wInt = pendingInt_, damp = 0, nextExt = 0, nextInt = 0;
   const double dtOld = dt_;
   for (int i = 0; i < N.count; ++i) {
     double keNode = 0, dampNode = 0;
@@ -69,9 +70,11 @@ bool CentralDifference::step(double limitTime, bool monitor) {
       const int d = 3 * i + k;
       const double vOld = v[d];
       const double vNew = (c1 * vOld + dtAvg * im[d] * (fe[d] - fi[d])) * c2;
-      const double travel = 0.5 * (dtOld * vOld + dtNext * vNew);  // half of the path before and after x(n)
-      wExt += fe[d] * travel;
-      wInt += fi[d] * travel;
+      const double before = 0.5 * dtOld * vOld, after = 0.5 * dtNext * vNew;  // halves of Δx(n), Δx(n+1)
+      wExt += fe[d] * before;
+      wInt += fi[d] * before;
+      nextExt += fe[d] * after;
+      nextInt += fi[d] * after;
       const double vMid = 0.5 * (vOld + vNew);
       keNode += vMid * vMid;
       dampNode += vMid * vMid;
@@ -91,7 +94,7 @@ bool CentralDifference::step(double limitTime, bool monitor) {
     v[d] = (target - xOld) / dtNext;
     x[d] = target;
     const double reaction = fi[d] - fe[d];  // force the support applies, static part
-    wExt += reaction * dtNext * v[d];
+    nextExt += reaction * dtNext * v[d];
     ke += 0.5 * m[p.node] * (0.25 * (vOld + v[d]) * (vOld + v[d]) - vOld * vOld);
   }
   // Oblique symmetry planes: remove the normal component of velocity and of the step just taken.
@@ -105,6 +108,8 @@ bool CentralDifference::step(double limitTime, bool monitor) {
     }
   }
 
+  pendingExt_ = nextExt;
+  pendingInt_ = nextInt;
   ledger_.kinetic = ke;
   ledger_.externalWork += wExt;
   ledger_.internalWork += wInt;

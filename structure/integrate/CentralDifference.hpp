@@ -56,6 +56,7 @@ class CentralDifference {
   double dt_ = 0;  ///< Δt(n) = t(n) − t(n−1); 0 before the first step (half-step start)
   double stableDt_ = 0;
   long steps_ = 0;
+  double pendingExt_ = 0, pendingInt_ = 0;  ///< ½ f(n)·Δx(n+1): booked once x(n+1) is reached
 };
 
 }  // namespace fsi::structure

@@ -1,0 +1,101 @@
+// Google Benchmark of the structure solver's hot loops.
+//   build/bin/fsi_bench --benchmark_filter=Membrane      force kernel alone, 10^3..10^6 triangles
+//   build/bin/fsi_bench --benchmark_filter=Step          full central-difference step
+// items_per_second = element updates per second.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "structure/effects/MembraneForces.hpp"
+#include "structure/integrate/CentralDifference.hpp"
+#include "structure/scene/Scene.hpp"
+
+using namespace fsi::structure;
+
+namespace {
+
+// A square sheet of about `triangles` cross-pattern triangles, pre-stretched and rippled so that the
+// kernel sees a realistic mix of taut, wrinkled and slack elements (and their branches).
+std::string sheetScene(long triangles, const std::string& extraEffects) {
+  const int n = std::max(1, int(std::lround(std::sqrt(double(triangles) / 4.0))));
+  return fmt::format(R"(materials:
+  film: {{type: membrane, young: 1.0e9, poisson: 0.3, thickness: 1.0e-3, density: 1000}}
+meshes:
+  sheet:
+    generator: {{type: rectangle, size: [1, 1], divisions: [{0}, {0}], pattern: cross}}
+    material: film
+constraints:
+  - {{nodes: sheet/boundary, fix: all}}
+effects:
+  pressure: {{triangles: sheet, value: 100}}
+  mass_damping: {{alpha: 10}}
+{1}
+time: {{end: 1.0}}
+output: {{interval: 0}}
+)",
+                     n, extraEffects);
+}
+
+void deform(Model& m) {
+  for (int i = 0; i < m.nodes.count; ++i) {
+    const double X = m.nodes.X[3 * i], Y = m.nodes.X[3 * i + 1];
+    m.nodes.x[3 * i] = X * 1.002 + 1e-3 * std::sin(40 * Y);
+    m.nodes.x[3 * i + 1] = Y * (1.0 - 1e-3 * std::cos(7 * X));
+    m.nodes.x[3 * i + 2] = 1e-3 * std::sin(30 * X) * std::sin(20 * Y);
+  }
+}
+
+// Scenes are cached: building a 10^6-element model takes longer than measuring it.
+Scene& cachedScene(long n, const std::string& extra) {
+  static std::map<std::pair<long, std::string>, std::unique_ptr<Scene>> cache;
+  auto& s = cache[{n, extra}];
+  if (!s) {
+    s = std::make_unique<Scene>(loadSceneFromString(sheetScene(n, extra), "bench.yaml"));
+    deform(*s->model);
+  }
+  return *s;
+}
+
+void BM_MembraneKernel(benchmark::State& state) {
+  Scene& s = cachedScene(state.range(0), "");
+  Model& m = *s.model;
+  ForceContext ctx;
+  ctx.x = m.nodes.x.data();
+  ctx.v = m.nodes.v.data();
+  ctx.fint = m.nodes.fint.data();
+  ctx.fext = m.nodes.fext.data();
+  for (auto _ : state) {
+    ctx.minStableDt = 1e300;
+    s.membrane->addForces(ctx);
+    benchmark::DoNotOptimize(ctx.minStableDt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * m.membranes.count);
+  state.counters["triangles"] = m.membranes.count;
+}
+
+void runSteps(benchmark::State& state, const std::string& extra) {
+  Scene& s = cachedScene(state.range(0), extra);
+  Model& m = *s.model;
+  CentralDifference cd(m, s.effectList(), s.constraints, s.time.integrator);
+  for (auto _ : state) {
+    cd.step(1e300, false);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * (m.membranes.count + m.cables.count));
+  state.counters["triangles"] = m.membranes.count;
+}
+
+void BM_Step(benchmark::State& state) { runSteps(state, ""); }
+void BM_StepWithViscosityAndGravity(benchmark::State& state) {
+  runSteps(state, "  stiffness_damping: {beta: 1.0e-7}\n  bulk_viscosity: {b1: 0.06}\n  gravity: {acceleration: [0, 0, -9.81]}");
+}
+
+}  // namespace
+
+BENCHMARK(BM_MembraneKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Step)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepWithViscosityAndGravity)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);

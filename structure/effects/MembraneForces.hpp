@@ -1,12 +1,12 @@
 #pragma once
 // MembraneForces: internal forces of corotational constant-strain triangles.
 //
-// Kinematics. Each triangle carries its own frame, rebuilt every step from the current nodes (e1 along edge
-// 1-2, e2 in-plane, normal e1 x e2). The in-plane deformation gradient F maps the reference triangle, stored
-// in its own edge-aligned frame, onto the current one expressed in the current frame; it is upper triangular.
-// Shape-function gradients live on the REFERENCE triangle (total Lagrangian), so no update of the reference
-// data is ever needed.
-// Strain: Green–Lagrange E = (FᵀF − I)/2, exactly zero for any rigid motion whatever the rotation angle.
+// Kinematics. The reference triangle is stored in its own edge-aligned 2D frame (node 1 at the origin, node 2
+// on the first axis); shape-function gradients live on this REFERENCE triangle (total Lagrangian), so the
+// reference data never changes. The deformation gradient F (3x2) maps the reference plane onto the current
+// triangle; its polar decomposition F = R U holds the element's rigid rotation R, which C = FᵀF = U² removes
+// exactly. This is the corotational element with the exact (polar) rotation: no frame is built or stored.
+// Strain: Green–Lagrange E = (C − I)/2, exactly zero for any rigid motion whatever the rotation angle.
 // Stress: second Piola–Kirchhoff S from the wrinkling St Venant–Kirchhoff law (WrinklingMembrane.hpp).
 // Forces: f_a = t A0 F S ∇N_a (one-point rule, reference area and thickness), rotated back to global axes.
 // Optional viscous stress (Rayleigh β and linear bulk viscosity b1) from Ė = sym(FᵀḞ).

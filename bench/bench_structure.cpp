@@ -77,6 +77,36 @@ void BM_MembraneKernel(benchmark::State& state) {
   state.counters["triangles"] = m.membranes.count;
 }
 
+// The pressure effect alone (the scene's only load).
+void BM_PressureKernel(benchmark::State& state) {
+  Scene& s = cachedScene(state.range(0), "");
+  Model& m = *s.model;
+  const Effect* pressure = s.effectList().back();
+  ForceContext ctx;
+  ctx.x = m.nodes.x.data();
+  ctx.fint = m.nodes.fint.data();
+  ctx.fext = m.nodes.fext.data();
+  for (auto _ : state) {
+    pressure->addForces(ctx);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * m.membranes.count);
+}
+
+// The integrator's node sweep with no effect at all (fixed step): what a step costs besides the effects.
+void BM_NodeSweep(benchmark::State& state) {
+  Scene& s = cachedScene(state.range(0), "");
+  Model& m = *s.model;
+  CentralDifferenceSettings settings = s.time.integrator;
+  settings.fixedDt = 1e-9;
+  CentralDifference cd(m, {}, s.constraints, settings);
+  for (auto _ : state) {
+    cd.step(1e300, false);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * m.membranes.count);
+}
+
 void runSteps(benchmark::State& state, const std::string& extra) {
   Scene& s = cachedScene(state.range(0), extra);
   Model& m = *s.model;
@@ -97,5 +127,7 @@ void BM_StepWithViscosityAndGravity(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_MembraneKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PressureKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NodeSweep)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Step)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepWithViscosityAndGravity)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);

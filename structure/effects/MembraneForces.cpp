@@ -39,15 +39,17 @@ inline void kinematics(const double* __restrict x, const int* n, const double* _
   k.C22 = k.f2[0] * k.f2[0] + k.f2[1] * k.f2[1] + k.f2[2] * k.f2[2];
 }
 
-// Squared smallest altitude (2A)²/l_max² of the current triangle: the element length of the stable step.
-inline double altitude2(const Kinematics& k) {
+// Squared smallest altitude (2A)²/l_max² of the current triangle, the element length of the stable step,
+// as numerator and denominator (the running minimum compares cross products instead of dividing).
+inline void altitude2(const Kinematics& k, double& num, double& den) {
   const double* a = k.d21;
   const double* b = k.d31;
   const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
   const double l21 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   const double l31 = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
   const double l32 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]);
-  return (cx * cx + cy * cy + cz * cz) / std::max(l21, std::max(l31, l32));
+  num = cx * cx + cy * cy + cz * cz;
+  den = std::max(l21, std::max(l31, l32));
 }
 
 template <bool Wrinkling>
@@ -69,7 +71,9 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
   const int* conn = el.conn.data();
   const double* geo = el.geo.data();
   const double* iws = el.invWaveSpeed.data();
-  double minDt2 = ctx.minStableDt * ctx.minStableDt;
+  // Running minimum of Δt² = num/den kept as a fraction; one division per block instead of per element.
+  double bestNum = ctx.minStableDt * ctx.minStableDt, bestDen = 1.0;
+  if (!std::isfinite(bestNum)) bestNum = 1.0, bestDen = 0.0;
   double minDt = ctx.minStableDt;
   double energy = 0.0;
   for (int e = blk.begin; e < blk.end; ++e) {
@@ -79,8 +83,10 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
     double S[3], w;
     stress<Wrinkling>(k, blk, S, w);
     if constexpr (Energy) energy += k.tA0 * w;
-    const double le2 = altitude2(k);
+    double aNum, aDen;
+    altitude2(k, aNum, aDen);
     if constexpr (Viscous) {
+      const double le2 = aNum / aDen;
       // Ė = sym(FᵀḞ) with Ḟ built like F from the nodal velocity differences.
       const double* v1 = v + 3 * n[0];
       const double* v2 = v + 3 * n[1];
@@ -104,7 +110,8 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
       const double xi = visc.beta * c / le + visc.bulkB1;
       minDt = std::min(minDt, le * iws[e] * (std::sqrt(1.0 + xi * xi) - xi));
     } else {
-      minDt2 = std::min(minDt2, le2 * iws[e] * iws[e]);
+      const double num = aNum * iws[e] * iws[e];
+      if (num * bestDen < bestNum * aDen) bestNum = num, bestDen = aDen;
     }
     // Nodal forces t A0 F S ∇N_a: P = F S has columns p1 = f1 S11 + f2 S12, p2 = f1 S12 + f2 S22.
     double* F1 = f + 3 * n[0];
@@ -124,7 +131,7 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
   if constexpr (Viscous) {
     ctx.minStableDt = minDt;
   } else {
-    ctx.minStableDt = std::sqrt(minDt2);
+    ctx.minStableDt = bestDen > 0 ? std::sqrt(bestNum / bestDen) : ctx.minStableDt;
   }
   if constexpr (Energy) ctx.strainEnergy += energy;
 }

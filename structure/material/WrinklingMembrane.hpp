@@ -29,15 +29,16 @@ inline WrinkleState wrinklingStress(double e11, double e22, double g12, double y
                                     double S[3], double& energy) {
   const double em = 0.5 * (e11 + e22);
   const double hd = 0.5 * (e11 - e22);
-  const double r = std::sqrt(hd * hd + 0.25 * g12 * g12);  // radius of Mohr's circle of strain
-  const double e1 = em + r;
-  const double e2 = em - r;
-  if (e1 <= 0.0) {
+  const double r2 = hd * hd + 0.25 * g12 * g12;  // squared radius of Mohr's circle of strain
+  // Branch tests on squares: the square root is only needed in the wrinkled state.
+  //   slack: e1 = em + r <= 0      <=>  em <= 0 and em² >= r²
+  //   taut : e2 + ν e1 >= 0        <=>  (1+ν) em >= (1−ν) r  <=>  em >= 0 and (1+ν)² em² >= (1−ν)² r²
+  if (em <= 0.0 && em * em >= r2) {
     S[0] = S[1] = S[2] = 0.0;
     energy = 0.0;
     return WrinkleState::Slack;
   }
-  if (e2 + nu * e1 >= 0.0) {  // minor principal trial stress c11 (e2 + ν e1) is not compressive
+  if (em >= 0.0 && (1.0 + nu) * (1.0 + nu) * em * em >= (1.0 - nu) * (1.0 - nu) * r2) {
     S[0] = c11 * (e11 + nu * e22);
     S[1] = c11 * (e22 + nu * e11);
     S[2] = 0.5 * c11 * (1.0 - nu) * g12;
@@ -45,6 +46,8 @@ inline WrinkleState wrinklingStress(double e11, double e22, double g12, double y
     return WrinkleState::Taut;
   }
   // Wrinkled: r > 0 here (r = 0 with e1 > 0 would be equibiaxial tension, which is taut).
+  const double r = std::sqrt(r2);
+  const double e1 = em + r;
   const double s1 = young * e1;
   const double c2 = hd / r;          // cos 2θ of the major principal direction
   const double s2 = 0.5 * g12 / r;   // sin 2θ

@@ -74,7 +74,8 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
       e.finish({"value", "rel_tol"});
       const auto it = r.probes.find(probe);
       if (it == r.probes.end()) expects.failAt(probe, fmt::format("the scene defines no probe '{}'", probe));
-      const double err = std::abs(it->second - value) / std::abs(value);
+      // Relative error; for an expected 0 the tolerance is absolute.
+      const double err = std::abs(it->second - value) / (value != 0.0 ? std::abs(value) : 1.0);
       const bool ok = r.exitCode() == 0 && err <= relTol;
       failures += ok ? 0 : 1;
       ++total;

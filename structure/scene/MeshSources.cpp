@@ -45,33 +45,44 @@ DiscParams discParams(const YamlMap& g) {
   return p;
 }
 
+// Generator messages name the parameter; add where in the scene it came from. YAML errors are already
+// located and pass through unchanged.
+template <class Params, class Fn>
+MeshData located(const YamlMap& g, Fn fn, const Params& p, const std::string& name) {
+  try {
+    return fn(p, name);
+  } catch (const InputError& e) {
+    throw InputError(locate(g.file(), g.node(), g.path()) + ": " + e.what());
+  }
+}
+
 MeshData generate(const YamlMap& g, const std::string& name) {
   const std::string type =
       g.choice("type", {"rectangle", "disc", "sphere_octant", "cable_chain", "strip", "pillow"});
-  try {
+  {
     if (type == "rectangle") {
       auto p = rectangleParams(g);
       g.finish({"type", "size", "divisions", "center", "pattern"});
-      return rectangle(p, name);
+      return located(g, rectangle, p, name);
     }
     if (type == "disc") {
       auto p = discParams(g);
       g.finish({"type", "radius", "rings", "center"});
-      return disc(p, name);
+      return located(g, disc, p, name);
     }
     if (type == "sphere_octant") {
       SphereOctantParams p;
       p.radius = g.number("radius");
       p.divisions = int(g.integer("divisions"));
       g.finish({"type", "radius", "divisions"});
-      return sphereOctant(p, name);
+      return located(g, sphereOctant, p, name);
     }
     if (type == "cable_chain") {
       CableChainParams p;
       p.points = points(g, "points");
       p.divisions = toInts(g.integers("divisions"));
       g.finish({"type", "points", "divisions"});
-      return cableChain(p, name);
+      return located(g, cableChain, p, name);
     }
     if (type == "strip") {
       StripParams p;
@@ -81,7 +92,7 @@ MeshData generate(const YamlMap& g, const std::string& name) {
       p.across = int(g.integer("across", 1));
       p.pattern = g.choice("pattern", {"ruled", "alternating"}, "ruled");
       g.finish({"type", "path", "divisions", "width", "across", "pattern"});
-      return strip(p, name);
+      return located(g, strip, p, name);
     }
     PillowParams p;
     p.shape = g.choice("shape", {"rectangle", "disc"});
@@ -92,10 +103,7 @@ MeshData generate(const YamlMap& g, const std::string& name) {
       p.disc = discParams(g);
       g.finish({"type", "shape", "radius", "rings", "center"});
     }
-    return pillow(p, name);
-  } catch (const InputError& e) {
-    // Generator messages name the parameter; add where in the scene it came from.
-    throw InputError(locate(g.file(), g.node(), g.path()) + ": " + e.what());
+    return located(g, pillow, p, name);
   }
 }
 

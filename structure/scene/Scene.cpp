@@ -407,11 +407,15 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     tc.integrator.safety = t.number("safety", 0.9);
     if (!(tc.integrator.safety > 0 && tc.integrator.safety <= 1.0)) t.failAt("safety", "must be in (0, 1]");
     tc.integrator.fixedDt = t.number("fixed_dt", 0.0);
+    if (tc.integrator.fixedDt < 0) t.failAt("fixed_dt", "must be > 0 (or absent for the automatic step)");
     tc.integrator.maxDt = t.number("max_dt", 1e300);
+    if (!(tc.integrator.maxDt > 0)) t.failAt("max_dt", "must be > 0");
     tc.monitorEvery = t.integer("monitor_every", 100);
     if (tc.monitorEvery < 1) t.failAt("monitor_every", "must be >= 1");
     tc.energyTolerance = t.number("energy_tolerance", 0.05);
+    if (!(tc.energyTolerance > 0)) t.failAt("energy_tolerance", "must be > 0");
     tc.massScalingMinDt = t.number("mass_scaling_min_dt", 0.0);
+    if (tc.massScalingMinDt < 0) t.failAt("mass_scaling_min_dt", "must be >= 0");
     t.finish({"end", "until_static", "safety", "fixed_dt", "max_dt", "monitor_every", "energy_tolerance",
               "mass_scaling_min_dt"});
     if (tc.massScalingMinDt > 0)
@@ -426,6 +430,11 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       for (const auto& m : model.meshes)
         if (m.name == name) s.failAt(name, "a set may not have the name of a mesh");
       sets.define(name, s.raw(name), s.childPath(name));
+    }
+    // Resolve every set once, used or not, so that a typo in an unused set is still reported.
+    for (const auto& name : s.keys()) {
+      const YAML::Node sel = s.node()[name];
+      if (sel.IsScalar() || sel.IsSequence() || sel.IsMap()) sets.nodes(sel, s.childPath(name));
     }
   }
 

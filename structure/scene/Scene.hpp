@@ -32,7 +32,7 @@ struct ProbeSpec {
   std::vector<int> triangles;  ///< model membrane element indices
   int component = 0;           ///< 0,1,2 = x,y,z; 3 = magnitude; 4 = radial (from `center`)
   std::array<double, 3> center{0, 0, 0};
-  std::string quantity;        ///< stress probes: max_principal | min_principal | von_mises
+  std::string quantity;        ///< stress probes: max_principal | min_principal
 };
 
 struct TimeControl {

@@ -185,6 +185,14 @@ void YamlMap::finish(const std::vector<std::string>& validKeys) const {
   }
 }
 
+namespace {
+std::size_t listIndex(const std::string& part, const std::string& assignment) {
+  if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos)
+    throw InputError(fmt::format("--set '{}': '{}' must be a list index (0, 1, ...)", assignment, part));
+  return std::stoul(part);
+}
+}  // namespace
+
 void applyOverride(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -210,7 +218,7 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
     YAML::Node cur = chain.back();
     const std::string& p = parts[i];
     if (cur.IsSequence()) {
-      const std::size_t idx = std::stoul(p);
+      const std::size_t idx = listIndex(p, assignment);
       if (idx >= cur.size())
         throw InputError(fmt::format("--set '{}': index {} out of range (list has {} entries)", path, idx,
                                      cur.size()));
@@ -221,7 +229,7 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
   }
   YAML::Node last = chain.back();
   if (last.IsSequence()) {
-    const std::size_t idx = std::stoul(parts.back());
+    const std::size_t idx = listIndex(parts.back(), assignment);
     if (idx >= last.size()) throw InputError(fmt::format("--set '{}': index out of range", path));
     last[idx] = value;
   } else {

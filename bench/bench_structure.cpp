@@ -119,9 +119,13 @@ void runSteps(benchmark::State& state, const std::string& extra) {
   state.counters["triangles"] = m.membranes.count;
 }
 
-void BM_Step(benchmark::State& state) { runSteps(state, ""); }
+void BM_Step(benchmark::State& state) {
+  runSteps(state, "");
+}
 void BM_StepWithViscosityAndGravity(benchmark::State& state) {
-  runSteps(state, "  stiffness_damping: {beta: 1.0e-7}\n  bulk_viscosity: {b1: 0.06}\n  gravity: {acceleration: [0, 0, -9.81]}");
+  runSteps(state,
+           "  stiffness_damping: {beta: 1.0e-7}\n  bulk_viscosity: {b1: 0.06}\n  gravity: {acceleration: [0, "
+           "0, -9.81]}");
 }
 
 }  // namespace

@@ -2,10 +2,10 @@
 //   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet]
 //   fsi validate CASE_DIR [--out DIR]   runs the checks in CASE_DIR/reference.yaml against their references
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <exception>
 #include <filesystem>
@@ -21,7 +21,8 @@ using namespace fsi::structure;
 
 namespace {
 
-int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets, bool quiet) {
+int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets,
+               bool quiet) {
   Scene scene = loadScene(scenePath, sets);
   RunOptions opt;
   opt.outDir = out;
@@ -51,8 +52,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   if (out.empty()) out = fs::path("results") / caseDir.filename();
   std::size_t failures = 0;
   fmt::print("validate {}  (reference: {})\n", caseDir.string(), source);
-  fmt::print("  {:<34} {:>14} {:>14} {:>9} {:>8}  {}\n", "check", "computed", "expected", "error", "tol",
-             "");
+  fmt::print("  {:<34} {:>14} {:>14} {:>9} {:>8}  {}\n", "check", "computed", "expected", "error", "tol", "");
   std::size_t total = 0;
   for (std::size_t i = 0; i < checks.size(); ++i) {
     YamlMap c(checks[i], refFile.string(), fmt::format("checks[{}]", i));

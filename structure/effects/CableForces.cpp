@@ -34,7 +34,8 @@ void cableBlock(const Cables& el, const CableBlock& blk, const CableViscosity& v
     const double iL = 1.0 / L;
     if constexpr (Viscous) {
       const double rate = ((v[3 * j] - v[3 * i]) * d[0] + (v[3 * j + 1] - v[3 * i + 1]) * d[1] +
-                           (v[3 * j + 2] - v[3 * i + 2]) * d[2]) * iL / L0;
+                           (v[3 * j + 2] - v[3 * i + 2]) * d[2]) *
+                          iL / L0;
       const double c = 1.0 / el.invWaveSpeed[e];
       T += (visc.beta * blk.axialStiffness + visc.bulkB1 * blk.density * c * L0 * blk.area) * rate;
     }
@@ -51,7 +52,8 @@ void cableBlock(const Cables& el, const CableBlock& blk, const CableViscosity& v
 void CableForces::addForces(ForceContext& ctx) const {
   for (const CableBlock& b : el_.blocks) {
     if (visc_.enabled()) {
-      ctx.wantEnergy ? cableBlock<true, true>(el_, b, visc_, ctx) : cableBlock<true, false>(el_, b, visc_, ctx);
+      ctx.wantEnergy ? cableBlock<true, true>(el_, b, visc_, ctx)
+                     : cableBlock<true, false>(el_, b, visc_, ctx);
     } else {
       ctx.wantEnergy ? cableBlock<false, true>(el_, b, visc_, ctx)
                      : cableBlock<false, false>(el_, b, visc_, ctx);

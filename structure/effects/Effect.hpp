@@ -17,7 +17,7 @@ struct ForceContext {
   double* fext = nullptr;     ///< external applied forces (accumulated)
   bool wantEnergy = false;    ///< also sum the strain energy (only on monitoring steps)
   double minStableDt = std::numeric_limits<double>::infinity();  ///< reduced by every element effect
-  double strainEnergy = 0;    ///< accumulated when wantEnergy
+  double strainEnergy = 0;                                       ///< accumulated when wantEnergy
 };
 
 class Effect {

@@ -14,10 +14,10 @@ namespace {
 // exactly, so the frame of the current triangle is never built in the force kernel; this is the
 // corotational formulation with the polar rotation, at the cost of a few dot products.
 struct Kinematics {
-  double d21[3], d31[3];     // current edge vectors from node 1
-  double f1[3], f2[3];       // columns of F
-  double n2x, n2y, n3y, tA0; // reference shape-function gradients (node 1 = −node 2 − node 3) and t·A0
-  double C11, C12, C22;      // right Cauchy–Green tensor
+  double d21[3], d31[3];      // current edge vectors from node 1
+  double f1[3], f2[3];        // columns of F
+  double n2x, n2y, n3y, tA0;  // reference shape-function gradients (node 1 = −node 2 − node 3) and t·A0
+  double C11, C12, C22;       // right Cauchy–Green tensor
 };
 
 inline void kinematics(const double* __restrict x, const int* n, const double* __restrict g, Kinematics& k) {
@@ -47,7 +47,8 @@ inline void altitude2(const Kinematics& k, double& num, double& den) {
   const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
   const double l21 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   const double l31 = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
-  const double l32 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]);
+  const double l32 =
+      (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]);
   num = cx * cx + cy * cy + cz * cz;
   den = std::max(l21, std::max(l31, l32));
 }

@@ -27,9 +27,9 @@ struct MembraneViscosity {
 
 /// Per-element results for output and diagnosis.
 struct MembraneStressField {
-  std::vector<double> cauchy;     ///< 6 per element, global axes, order xx yy zz xy yz xz [Pa]
-  std::vector<double> principal;  ///< 2 per element: major, minor principal Cauchy stress [Pa]
-  std::vector<double> state;      ///< WrinkleState as a number (0 taut, 1 wrinkled, 2 slack)
+  std::vector<double> cauchy;       ///< 6 per element, global axes, order xx yy zz xy yz xz [Pa]
+  std::vector<double> principal;    ///< 2 per element: major, minor principal Cauchy stress [Pa]
+  std::vector<double> state;        ///< WrinkleState as a number (0 taut, 1 wrinkled, 2 slack)
   std::vector<double> majorStrain;  ///< major principal Green–Lagrange strain
 };
 

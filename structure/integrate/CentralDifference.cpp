@@ -6,8 +6,9 @@
 
 namespace fsi::structure {
 
-CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> effects, Constraints constraints,
-                                     CentralDifferenceSettings settings, double startTime)
+CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> effects,
+                                     Constraints constraints, CentralDifferenceSettings settings,
+                                     double startTime)
     : model_(model),
       effects_(std::move(effects)),
       constraints_(std::move(constraints)),
@@ -38,18 +39,23 @@ double CentralDifference::computeForces(bool withEnergy) {
   return ctx.minStableDt;
 }
 
-void CentralDifference::evaluateForces(bool withEnergy) { computeForces(withEnergy); }
+void CentralDifference::evaluateForces(bool withEnergy) {
+  computeForces(withEnergy);
+}
 
 bool CentralDifference::step(double limitTime, bool monitor) {
   Nodes& N = model_.nodes;
   const double stable = computeForces(monitor);
-  double dtNext = settings_.fixedDt > 0 ? settings_.fixedDt : std::min(settings_.safety * stable, settings_.maxDt);
+  double dtNext =
+      settings_.fixedDt > 0 ? settings_.fixedDt : std::min(settings_.safety * stable, settings_.maxDt);
   if (!(dtNext > 0) || !std::isfinite(dtNext)) dtNext = settings_.maxDt < 1e299 ? settings_.maxDt : 0.0;
   if (!(dtNext > 0)) return false;  // no element bounds the step and no maximum is set: nothing to integrate
   // Land exactly on the limit; avoid a sliver step just before it.
   const double remaining = limitTime - time_;
-  if (remaining <= dtNext * (1.0 + 1e-9)) dtNext = remaining;
-  else if (remaining < 1.5 * dtNext) dtNext = 0.5 * remaining;
+  if (remaining <= dtNext * (1.0 + 1e-9))
+    dtNext = remaining;
+  else if (remaining < 1.5 * dtNext)
+    dtNext = 0.5 * remaining;
   const double dtAvg = 0.5 * (dt_ + dtNext);
   const double a = settings_.massDamping;
   const double c1 = 1.0 - 0.5 * a * dtAvg;

@@ -18,10 +18,10 @@
 namespace fsi::structure {
 
 struct CentralDifferenceSettings {
-  double safety = 0.9;      ///< fraction of the element stability limit
-  double fixedDt = 0;       ///< > 0: use this step and ignore the stability estimate (for studies/tests)
-  double maxDt = 1e300;     ///< upper bound on the step
-  double massDamping = 0;   ///< Rayleigh α [1/s]
+  double safety = 0.9;     ///< fraction of the element stability limit
+  double fixedDt = 0;      ///< > 0: use this step and ignore the stability estimate (for studies/tests)
+  double maxDt = 1e300;    ///< upper bound on the step
+  double massDamping = 0;  ///< Rayleigh α [1/s]
 };
 
 class CentralDifference {
@@ -42,7 +42,8 @@ class CentralDifference {
   /// Re-evaluates forces at the current state (for reactions and output); does not advance.
   void evaluateForces(bool withEnergy);
   /// Restores a saved state (x, v at the half step, time, last step size).
-  void restore(const std::vector<double>& x, const std::vector<double>& v, double time, double dt, long steps);
+  void restore(const std::vector<double>& x, const std::vector<double>& v, double time, double dt,
+               long steps);
 
  private:
   double computeForces(bool withEnergy);

@@ -8,12 +8,12 @@
 namespace fsi::structure {
 
 struct EnergyLedger {
-  double kinetic = 0;          ///< ½ v·M v at the last integer step
-  double initialKinetic = 0;   ///< kinetic energy at t0
-  double strain = 0;           ///< elastic strain energy (at the last monitoring step)
-  double externalWork = 0;     ///< ∫ f_ext·dx, including the work of prescribed-motion reactions
-  double internalWork = 0;     ///< ∫ f_int·dx = strain energy + viscous (β, bulk) dissipation
-  double massDamping = 0;      ///< dissipation of the α (mass-proportional) damping
+  double kinetic = 0;         ///< ½ v·M v at the last integer step
+  double initialKinetic = 0;  ///< kinetic energy at t0
+  double strain = 0;          ///< elastic strain energy (at the last monitoring step)
+  double externalWork = 0;    ///< ∫ f_ext·dx, including the work of prescribed-motion reactions
+  double internalWork = 0;    ///< ∫ f_int·dx = strain energy + viscous (β, bulk) dissipation
+  double massDamping = 0;     ///< dissipation of the α (mass-proportional) damping
 
   double viscousDissipation() const { return internalWork - strain; }
   double scale() const {

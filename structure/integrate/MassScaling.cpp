@@ -37,7 +37,7 @@ MassScalingReport applyMassScaling(Model& model, double targetDt, double safety)
       const double* g = &T.geo[MembraneTriangles::kGeo * e];
       const double dt = referenceAltitude(g) * T.invWaveSpeed[e];
       if (dt >= need) continue;
-      const double s = (need / dt) * (need / dt);  // c ∝ ρ^-1/2
+      const double s = (need / dt) * (need / dt);               // c ∝ ρ^-1/2
       const double extra = (s - 1.0) * b.density * g[3] / 3.0;  // g[3] = t A0
       for (int k = 0; k < 3; ++k) N.mass[T.conn[3 * e + k]] += extra;
       r.addedMass += 3.0 * extra;

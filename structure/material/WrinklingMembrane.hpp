@@ -49,8 +49,8 @@ inline WrinkleState wrinklingStress(double e11, double e22, double g12, double y
   const double r = std::sqrt(r2);
   const double e1 = em + r;
   const double s1 = young * e1;
-  const double c2 = hd / r;          // cos 2θ of the major principal direction
-  const double s2 = 0.5 * g12 / r;   // sin 2θ
+  const double c2 = hd / r;         // cos 2θ of the major principal direction
+  const double s2 = 0.5 * g12 / r;  // sin 2θ
   S[0] = 0.5 * s1 * (1.0 + c2);
   S[1] = 0.5 * s1 * (1.0 - c2);
   S[2] = 0.5 * s1 * s2;

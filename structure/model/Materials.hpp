@@ -8,11 +8,11 @@ namespace fsi::structure {
 /// Isotropic linear membrane (St Venant–Kirchhoff in Green–Lagrange strain), optional wrinkling.
 struct MembraneMaterial {
   std::string name;
-  double young = 0;      ///< Young's modulus [Pa]
-  double poisson = 0;    ///< Poisson's ratio [-]
-  double thickness = 0;  ///< reference thickness [m]
-  double density = 0;    ///< mass density [kg/m³]
-  bool wrinkling = true; ///< false: the membrane also carries compression (plain plane stress)
+  double young = 0;       ///< Young's modulus [Pa]
+  double poisson = 0;     ///< Poisson's ratio [-]
+  double thickness = 0;   ///< reference thickness [m]
+  double density = 0;     ///< mass density [kg/m³]
+  bool wrinkling = true;  ///< false: the membrane also carries compression (plain plane stress)
 };
 
 /// Tension-only cable.

@@ -10,13 +10,13 @@
 namespace fsi::structure {
 
 struct MeshData {
-  std::string name;                              ///< mesh name from the scene
-  std::vector<std::array<double, 3>> points;     ///< reference coordinates [m]
-  std::vector<long> pointTags;                   ///< user-facing node ids (Gmsh tags; 1-based for generators)
-  std::vector<std::array<int, 3>> triangles;     ///< membrane triangles, indices into points (CCW = normal)
-  std::vector<std::array<int, 2>> lines;         ///< cables, indices into points
-  std::vector<long> triangleTags;                ///< user-facing element ids, one per triangle
-  std::vector<long> lineTags;                    ///< user-facing element ids, one per line
+  std::string name;                           ///< mesh name from the scene
+  std::vector<std::array<double, 3>> points;  ///< reference coordinates [m]
+  std::vector<long> pointTags;                ///< user-facing node ids (Gmsh tags; 1-based for generators)
+  std::vector<std::array<int, 3>> triangles;  ///< membrane triangles, indices into points (CCW = normal)
+  std::vector<std::array<int, 2>> lines;      ///< cables, indices into points
+  std::vector<long> triangleTags;             ///< user-facing element ids, one per triangle
+  std::vector<long> lineTags;                 ///< user-facing element ids, one per line
   std::map<std::string, std::vector<int>> nodeGroups;      ///< named node groups (indices into points)
   std::map<std::string, std::vector<int>> triangleGroups;  ///< named triangle groups (indices into triangles)
   std::map<std::string, std::vector<int>> lineGroups;      ///< named line groups (indices into lines)

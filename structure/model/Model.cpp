@@ -146,8 +146,7 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
         if (t[k] < 0 || t[k] >= int(md.points.size()))
           throw InputError(fmt::format("mesh '{}': triangle {} refers to node index {} out of range", md.name,
                                        e < md.triangleTags.size() ? md.triangleTags[e] : long(e + 1), t[k]));
-      tris.push_back({int(m), int(e), inputs[m].membraneMaterial,
-                      std::min({nm[t[0]], nm[t[1]], nm[t[2]]})});
+      tris.push_back({int(m), int(e), inputs[m].membraneMaterial, std::min({nm[t[0]], nm[t[1]], nm[t[2]]})});
     }
     for (std::size_t e = 0; e < md.lines.size(); ++e) {
       const auto& l = md.lines[e];
@@ -172,7 +171,8 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
   T.invWaveSpeed.resize(T.count);
   T.tag.resize(T.count);
   T.mesh.resize(T.count);
-  for (auto& mm : model.meshes) mm.triangle.assign(inputs[&mm - model.meshes.data()].mesh.triangles.size(), -1);
+  for (auto& mm : model.meshes)
+    mm.triangle.assign(inputs[&mm - model.meshes.data()].mesh.triangles.size(), -1);
   for (int e = 0; e < T.count; ++e) {
     const TriRef& r = tris[e];
     const MeshData& md = inputs[r.mesh].mesh;
@@ -196,9 +196,10 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     const double c0 = std::sqrt(std::max(0.0, l31 * l31 - b0 * b0));
     const double lmax = std::max(a0, l31);
     if (!(a0 > 0) || !(c0 > 1e-9 * lmax))
-      throw InputError(fmt::format("{} is degenerate (zero area; nodes {}, {}, {}): check for duplicate or "
-                                   "collinear nodes",
-                                   model.describeTriangle(e), N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
+      throw InputError(
+          fmt::format("{} is degenerate (zero area; nodes {}, {}, {}): check for duplicate or "
+                      "collinear nodes",
+                      model.describeTriangle(e), N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
     const MembraneMaterial& mat = model.membraneMaterials[r.material];
     const double area = 0.5 * a0 * c0;
     double* g = &T.geo[MembraneTriangles::kGeo * e];
@@ -243,8 +244,8 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     for (int k = 0; k < 3; ++k) L += std::pow(N.X[3 * b + k] - N.X[3 * a + k], 2);
     L = std::sqrt(L);
     if (a == b || !(L > 0))
-      throw InputError(fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e), N.tag[a],
-                                   N.tag[b]));
+      throw InputError(
+          fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e), N.tag[a], N.tag[b]));
     const CableMaterial& mat = model.cableMaterials[r.material];
     C.restLength[e] = L;
     C.invWaveSpeed[e] = std::sqrt(mat.density / mat.young);

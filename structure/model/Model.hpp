@@ -1,9 +1,9 @@
 #pragma once
 // Model: the discretised structure in structure-of-arrays form, ready for the step loop.
 //
-// Every nodal quantity is one contiguous array with the three components of a node side by side (xyz xyz ...):
-// an element gathers its nodes with three cache-line reads instead of nine. Nodes are renumbered along a
-// space-filling (Morton) curve and elements sorted by material then by first node, so that neighbouring
+// Every nodal quantity is one contiguous array with the three components of a node side by side (xyz xyz
+// ...): an element gathers its nodes with three cache-line reads instead of nine. Nodes are renumbered along
+// a space-filling (Morton) curve and elements sorted by material then by first node, so that neighbouring
 // elements touch neighbouring memory. User-facing ids (Gmsh tags, generator ids) are kept in `tag` arrays and
 // only used in messages and output.
 
@@ -18,22 +18,22 @@ namespace fsi::structure {
 
 struct Nodes {
   int count = 0;
-  std::vector<double> X;         ///< reference coordinates, 3 per node
-  std::vector<double> x;         ///< current coordinates
-  std::vector<double> v;         ///< velocities (at the half step during a run)
-  std::vector<double> fint;      ///< internal (resisting) forces, elastic + viscous
-  std::vector<double> fext;      ///< external forces (pressure, gravity, nodal loads)
-  std::vector<double> mass;      ///< lumped mass used for inertia (after mass scaling)
+  std::vector<double> X;             ///< reference coordinates, 3 per node
+  std::vector<double> x;             ///< current coordinates
+  std::vector<double> v;             ///< velocities (at the half step during a run)
+  std::vector<double> fint;          ///< internal (resisting) forces, elastic + viscous
+  std::vector<double> fext;          ///< external forces (pressure, gravity, nodal loads)
+  std::vector<double> mass;          ///< lumped mass used for inertia (after mass scaling)
   std::vector<double> physicalMass;  ///< lumped mass from the material densities (gravity, reports)
   std::vector<double> invMassDof;    ///< 1/mass per dof, 0 for a fixed dof: constraints cost no branch
-  std::vector<long> tag;         ///< user-facing node id
-  std::vector<int> mesh;         ///< index of the mesh the node came from
+  std::vector<long> tag;             ///< user-facing node id
+  std::vector<int> mesh;             ///< index of the mesh the node came from
 };
 
 /// Contiguous run of membrane elements with one material; the force kernel hoists the constants.
 struct MembraneBlock {
   int begin = 0, end = 0;
-  int material = 0;      ///< index into Model::membraneMaterials
+  int material = 0;  ///< index into Model::membraneMaterials
   double young = 0, c11 = 0, poisson = 0, density = 0;
   bool wrinkling = true;
 };
@@ -42,8 +42,8 @@ struct MembraneBlock {
 /// (node 1 at the origin, node 2 on the first axis): node 2 at (a0, 0), node 3 at (b0, c0).
 struct MembraneTriangles {
   int count = 0;
-  std::vector<int> conn;           ///< 3 node indices per element
-  std::vector<double> geo;         ///< 4 per element: 1/a0, b0, 1/c0, thickness*A0
+  std::vector<int> conn;             ///< 3 node indices per element
+  std::vector<double> geo;           ///< 4 per element: 1/a0, b0, 1/c0, thickness*A0
   std::vector<double> invWaveSpeed;  ///< 1/c_d per element (changes with mass scaling)
   std::vector<MembraneBlock> blocks;
   std::vector<long> tag;

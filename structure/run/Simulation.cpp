@@ -16,7 +16,9 @@ namespace fsi::structure {
 
 namespace {
 volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onInterrupt(int) { gInterrupted = 1; }
+extern "C" void onInterrupt(int) {
+  gInterrupted = 1;
+}
 
 double componentOf(const double* u, int component) {
   if (component < 3) return u[component];
@@ -46,7 +48,9 @@ double reduceValues(const std::vector<double>& vals, ProbeSpec::Reduce r) {
 }
 }  // namespace
 
-void installInterruptHandler() { std::signal(SIGINT, onInterrupt); }
+void installInterruptHandler() {
+  std::signal(SIGINT, onInterrupt);
+}
 
 std::string toString(StopReason r) {
   switch (r) {
@@ -175,7 +179,8 @@ class Frames {
         major_[e] = stress_.principal[2 * e];
         minor_[e] = stress_.principal[2 * e + 1];
       }
-      if (f.count("stress")) views.push_back({"stress", FieldView::Center::Triangle, 6, stress_.cauchy.data()});
+      if (f.count("stress"))
+        views.push_back({"stress", FieldView::Center::Triangle, 6, stress_.cauchy.data()});
       if (f.count("principal_stress")) {
         views.push_back({"principal_stress_major", FieldView::Center::Triangle, 1, major_.data()});
         views.push_back({"principal_stress_minor", FieldView::Center::Triangle, 1, minor_.data()});
@@ -250,9 +255,10 @@ std::string diagnose(const Scene& scene, const CentralDifference& cd, const Snap
       s += fmt::format("Most strained element: {} (major strain {:.3g}). ", m.describeTriangle(worst),
                        f.majorStrain[worst]);
   }
-  s += fmt::format("Step used {:.4g} s, element stability estimate {:.4g} s. Last stable state: step {} "
-                   "(t = {:.6g} s).",
-                   cd.lastDt(), cd.stableDt(), good.steps, good.time);
+  s += fmt::format(
+      "Step used {:.4g} s, element stability estimate {:.4g} s. Last stable state: step {} "
+      "(t = {:.6g} s).",
+      cd.lastDt(), cd.stableDt(), good.steps, good.time);
   return s;
 }
 
@@ -308,8 +314,14 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
     if (monitor) {
       const EnergyLedger& E = cd.energy();
       const double err = E.balanceError();
-      for (auto [i, v] : {std::pair{0, cd.time()}, {1, E.kinetic}, {2, E.strain}, {3, E.externalWork},
-                          {4, E.internalWork}, {5, E.massDamping}, {6, err}, {7, cd.lastDt()}})
+      for (auto [i, v] : {std::pair{0, cd.time()},
+                          {1, E.kinetic},
+                          {2, E.strain},
+                          {3, E.externalWork},
+                          {4, E.internalWork},
+                          {5, E.massDamping},
+                          {6, err},
+                          {7, cd.lastDt()}})
         energyRows[i].push_back(v);
       if (err > tc.energyTolerance) {
         result.reason = StopReason::Unstable;
@@ -348,11 +360,12 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
         const double wall = std::chrono::duration<double>(now - wall0).count();
         const EnergyLedger& E = cd.energy();
         const double eta = wall * (tEnd - cd.time()) / std::max(cd.time(), 1e-300);
-        fmt::print("step {:>9}  t {:.5g}/{:.5g} s  dt {:.3g} s  KE {:.4g} J  U {:.4g} J  {}  {:.0f} s left{}\n",
-                   cd.steps(), cd.time(), tEnd, cd.lastDt(), E.kinetic, E.strain,
-                   tc.untilStatic ? fmt::format("KE/U {:.2g}", E.strain > 0 ? E.kinetic / E.strain : 0.0)
-                                  : std::string(),
-                   eta, tc.untilStatic ? " (at most)" : "");
+        fmt::print(
+            "step {:>9}  t {:.5g}/{:.5g} s  dt {:.3g} s  KE {:.4g} J  U {:.4g} J  {}  {:.0f} s left{}\n",
+            cd.steps(), cd.time(), tEnd, cd.lastDt(), E.kinetic, E.strain,
+            tc.untilStatic ? fmt::format("KE/U {:.2g}", E.strain > 0 ? E.kinetic / E.strain : 0.0)
+                           : std::string(),
+            eta, tc.untilStatic ? " (at most)" : "");
         std::fflush(stdout);
       }
     }
@@ -387,15 +400,16 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   cd.evaluateForces(true);  // current forces for reactions, current strain energy for the summary
   result.probes = evaluateProbes(scene);
   probeRows[0].push_back(cd.time());
-  for (std::size_t i = 0; i < probeNames.size(); ++i) probeRows[i + 1].push_back(result.probes[probeNames[i]]);
+  for (std::size_t i = 0; i < probeNames.size(); ++i)
+    probeRows[i + 1].push_back(result.probes[probeNames[i]]);
   {
     std::vector<std::string> cols{"time"};
     cols.insert(cols.end(), probeNames.begin(), probeNames.end());
     frames.writer().writeTable("probes", cols, probeRows);
-    frames.writer().writeTable(
-        "energy",
-        {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping", "balance_error", "dt"},
-        energyRows);
+    frames.writer().writeTable("energy",
+                               {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping",
+                                "balance_error", "dt"},
+                               energyRows);
   }
   frames.writer().close();
 
@@ -434,10 +448,11 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
 
   if (!opt.quiet) {
-    fmt::print("stop   {} after {} steps, t = {:.6g} s, {:.3g} s wall, {:.3g} M element updates/s, energy "
-               "balance error {:.2e}\n",
-               toString(result.reason), steps, cd.time(), wall,
-               1e-6 * st["element_updates_per_second"].get<double>(), E.balanceError());
+    fmt::print(
+        "stop   {} after {} steps, t = {:.6g} s, {:.3g} s wall, {:.3g} M element updates/s, energy "
+        "balance error {:.2e}\n",
+        toString(result.reason), steps, cd.time(), wall,
+        1e-6 * st["element_updates_per_second"].get<double>(), E.balanceError());
     for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
   }
   if (!result.diagnosis.empty()) fmt::print(stderr, "error: {}\n", result.diagnosis);

@@ -6,9 +6,8 @@
 #include <filesystem>
 #include <functional>
 #include <map>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "structure/scene/Scene.hpp"
 

@@ -16,13 +16,17 @@ std::vector<Point3> points(const YamlMap& g, const std::string& key) {
   std::vector<Point3> out;
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string p = fmt::format("{}[{}]", g.childPath(key), i);
-    if (!n[i].IsSequence() || n[i].size() != 3) throw InputError(locate(g.file(), n[i], p) + ": expected [x, y, z]");
-    out.push_back({asNumber(n[i][0], g.file(), p), asNumber(n[i][1], g.file(), p), asNumber(n[i][2], g.file(), p)});
+    if (!n[i].IsSequence() || n[i].size() != 3)
+      throw InputError(locate(g.file(), n[i], p) + ": expected [x, y, z]");
+    out.push_back(
+        {asNumber(n[i][0], g.file(), p), asNumber(n[i][1], g.file(), p), asNumber(n[i][2], g.file(), p)});
   }
   return out;
 }
 
-std::vector<int> toInts(const std::vector<long>& v) { return std::vector<int>(v.begin(), v.end()); }
+std::vector<int> toInts(const std::vector<long>& v) {
+  return std::vector<int>(v.begin(), v.end());
+}
 
 RectangleParams rectangleParams(const YamlMap& g) {
   RectangleParams p;

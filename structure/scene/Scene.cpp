@@ -56,7 +56,8 @@ TimeFunction readTimeFunction(const YamlMap& parent, const std::string& key) {
       return TimeFunction::sine(a, f, ph, off);
     }
     const YAML::Node pts = m.raw("points");
-    if (!pts || !pts.IsSequence() || pts.size() == 0) m.fail("a table needs 'points: [[t0, v0], [t1, v1], ...]'");
+    if (!pts || !pts.IsSequence() || pts.size() == 0)
+      m.fail("a table needs 'points: [[t0, v0], [t1, v1], ...]'");
     std::vector<std::pair<double, double>> p;
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const std::string pp = fmt::format("{}.points[{}]", m.path(), i);
@@ -113,7 +114,8 @@ class SetResolver {
     const std::string near = closestMatch(name, names);
     throw InputError(locate(file_, at, path) +
                      fmt::format(": no set or mesh named '{}'{}; known: {}", name,
-                                 near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), join(names)));
+                                 near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                 join(names)));
   }
 
   template <class Groups>
@@ -159,7 +161,8 @@ class SetResolver {
       const std::string near = closestMatch(g, names);
       throw InputError(locate(file_, at, path) +
                        fmt::format(": mesh '{}' has no group '{}'{}; its groups: {}", mm.name, g,
-                                   near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), join(names)));
+                                   near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                   join(names)));
     }
     return out;
   }
@@ -185,8 +188,8 @@ class SetResolver {
       const auto names = groupNames(mm.source.triangleGroups);
       const std::string near = closestMatch(g, names);
       throw InputError(locate(file_, at, path) +
-                       fmt::format(": mesh '{}' has no triangle group '{}'{}; its triangle groups: {}", mm.name,
-                                   g, near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                       fmt::format(": mesh '{}' has no triangle group '{}'{}; its triangle groups: {}",
+                                   mm.name, g, near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
                                    join(names)));
     }
     for (int i : it->second) out.push_back(mm.triangle[i]);
@@ -214,8 +217,8 @@ class SetResolver {
       const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!(len > 0)) p.failAt("normal", "must not be zero");
       const double tol = m.number("tolerance", 1e-9);
-      std::vector<int> pool = m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth)
-                                             : std::vector<int>();
+      std::vector<int> pool =
+          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth) : std::vector<int>();
       if (!m.has("among")) {
         pool.resize(N.count);
         for (int i = 0; i < N.count; ++i) pool[i] = i;
@@ -230,8 +233,8 @@ class SetResolver {
       YamlMap b = m.map("box");
       const auto lo = b.vec3("min"), hi = b.vec3("max");
       b.finish({"min", "max"});
-      std::vector<int> pool = m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth)
-                                             : std::vector<int>();
+      std::vector<int> pool =
+          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth) : std::vector<int>();
       if (!m.has("among")) {
         pool.resize(N.count);
         for (int i = 0; i < N.count; ++i) pool[i] = i;
@@ -244,8 +247,8 @@ class SetResolver {
       m.finish({"box", "among"});
     } else if (m.has("nearest")) {
       const auto p = m.vec3("nearest");
-      std::vector<int> pool = m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth)
-                                             : std::vector<int>();
+      std::vector<int> pool =
+          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth) : std::vector<int>();
       if (!m.has("among")) {
         pool.resize(N.count);
         for (int i = 0; i < N.count; ++i) pool[i] = i;
@@ -273,8 +276,9 @@ class SetResolver {
       }
       m.finish({"ids", "mesh"});
     } else {
-      m.fail("a node selector is a set or mesh name ('mesh/group'), a list of them, or a mapping with one of: "
-             "plane, box, nearest, ids");
+      m.fail(
+          "a node selector is a set or mesh name ('mesh/group'), a list of them, or a mapping with one of: "
+          "plane, box, nearest, ids");
     }
     return out;
   }
@@ -289,8 +293,9 @@ class SetResolver {
       }
       return out;
     }
-    throw InputError(locate(file_, sel, path) +
-                     ": a triangle selector is a set or mesh name ('mesh' or 'mesh/group') or a list of them");
+    throw InputError(
+        locate(file_, sel, path) +
+        ": a triangle selector is a set or mesh name ('mesh' or 'mesh/group') or a list of them");
   }
 
   const Model& model_;
@@ -474,8 +479,10 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
           for (int k = 0; k < 3; ++k) d += (N.X[3 * j + k] - pt[k]) * n[k];
           if (std::abs(d) > tol) continue;
           ++count;
-          if (axis >= 0) scene.constraints.fixedDofs.push_back(3 * j + axis);
-          else scene.constraints.sliders.push_back({j, n});
+          if (axis >= 0)
+            scene.constraints.fixedDofs.push_back(3 * j + axis);
+          else
+            scene.constraints.sliders.push_back({j, n});
         }
         if (count == 0) c.failAt("symmetry", "no node lies on this plane (check point, normal, tolerance)");
         c.finish({"symmetry"});
@@ -552,7 +559,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
         std::vector<int> conn;
         for (int e : tris)
           for (int k = 0; k < 3; ++k) conn.push_back(model.membranes.conn[3 * e + k]);
-        const std::string label = p.node()["triangles"].IsScalar() ? p.node()["triangles"].Scalar() : p.path();
+        const std::string label =
+            p.node()["triangles"].IsScalar() ? p.node()["triangles"].Scalar() : p.path();
         loads.push_back(std::make_unique<FollowerPressure>(label, std::move(conn), value, fn));
       }
       scene.enabledEffects.push_back("pressure");
@@ -593,9 +601,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
         const auto& all = allOutputFields();
         if (std::find(all.begin(), all.end(), f) == all.end()) {
           const std::string near = closestMatch(f, all);
-          o.failAt("fields", fmt::format("unknown field '{}'{}; valid: {}", f,
-                                         near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                                         join(all)));
+          o.failAt("fields",
+                   fmt::format("unknown field '{}'{}; valid: {}", f,
+                               near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), join(all)));
         }
         scene.output.fields.insert(f);
       }
@@ -625,9 +633,10 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
         spec.center = p.vec3("center", {0, 0, 0});
         spec.reduce = reduces.at(p.choice("reduce", {"value", "mean", "max", "min"}, "value"));
         if (spec.reduce == ProbeSpec::Reduce::Value && spec.nodes.size() != 1)
-          p.failAt("nodes", fmt::format("selects {} nodes; 'reduce: value' needs exactly one (use nearest, or "
-                                        "reduce: mean | max | min)",
-                                        spec.nodes.size()));
+          p.failAt("nodes",
+                   fmt::format("selects {} nodes; 'reduce: value' needs exactly one (use nearest, or "
+                               "reduce: mean | max | min)",
+                               spec.nodes.size()));
         p.finish({"type", "nodes", "component", "center", "reduce"});
       } else if (type == "reaction") {
         spec.type = ProbeSpec::Type::Reaction;
@@ -663,8 +672,8 @@ Scene loadSceneFromString(const std::string& yaml, const std::string& name,
   try {
     root = YAML::Load(yaml);
   } catch (const YAML::ParserException& e) {
-    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", name, e.mark.line + 1, e.mark.column + 1,
-                                 e.msg));
+    throw InputError(
+        fmt::format("{}:{}:{}: YAML syntax error: {}", name, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
   for (const auto& o : overrides) applyOverride(root, o);
   return loadRoot(root, name, std::filesystem::path(name).parent_path());

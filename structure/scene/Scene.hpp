@@ -32,11 +32,11 @@ struct ProbeSpec {
   std::vector<int> triangles;  ///< model membrane element indices
   int component = 0;           ///< 0,1,2 = x,y,z; 3 = magnitude; 4 = radial (from `center`)
   std::array<double, 3> center{0, 0, 0};
-  std::string quantity;        ///< stress probes: max_principal | min_principal
+  std::string quantity;  ///< stress probes: max_principal | min_principal
 };
 
 struct TimeControl {
-  double endTime = 0;           ///< simulated end time (or the cap for until-static runs)
+  double endTime = 0;  ///< simulated end time (or the cap for until-static runs)
   bool untilStatic = false;
   double staticTolerance = 1e-8;  ///< stop when KE/strain energy stays below this
   long monitorEvery = 100;        ///< steps between energy checks
@@ -76,7 +76,7 @@ Scene loadSceneFromString(const std::string& yaml, const std::string& name,
                           const std::vector<std::string>& overrides = {});
 
 inline const std::vector<std::string>& allOutputFields() {
-  static const std::vector<std::string> f{"displacement", "velocity",     "stress",
+  static const std::vector<std::string> f{"displacement",     "velocity",      "stress",
                                           "principal_stress", "wrinkle_state", "cable_force"};
   return f;
 }

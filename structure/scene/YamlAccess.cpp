@@ -68,7 +68,9 @@ std::vector<std::string> YamlMap::keys() const {
   return k;
 }
 
-bool YamlMap::has(const std::string& key) const { return bool(node_[key]); }
+bool YamlMap::has(const std::string& key) const {
+  return bool(node_[key]);
+}
 
 YAML::Node YamlMap::require(const std::string& key) const {
   const YAML::Node n = node_[key];
@@ -90,7 +92,9 @@ void YamlMap::failAt(const std::string& key, const std::string& message) const {
   throw InputError(locate(file_, n ? n : node_, childPath(key)) + ": " + message);
 }
 
-double YamlMap::number(const std::string& key) const { return asNumber(require(key), file_, childPath(key)); }
+double YamlMap::number(const std::string& key) const {
+  return asNumber(require(key), file_, childPath(key));
+}
 double YamlMap::number(const std::string& key, double fallback) const {
   return has(key) ? number(key) : fallback;
 }
@@ -109,7 +113,8 @@ bool YamlMap::boolean(const std::string& key, bool fallback) const {
   try {
     return n.as<bool>();
   } catch (const YAML::Exception&) {
-    failAt(key, fmt::format("expected true or false, got '{}'", n.IsScalar() ? n.Scalar() : "(not a scalar)"));
+    failAt(key,
+           fmt::format("expected true or false, got '{}'", n.IsScalar() ? n.Scalar() : "(not a scalar)"));
   }
 }
 std::string YamlMap::string(const std::string& key) const {
@@ -124,8 +129,9 @@ std::string YamlMap::choice(const std::string& key, const std::vector<std::strin
   const std::string v = string(key);
   if (std::find(choices.begin(), choices.end(), v) == choices.end()) {
     const std::string near = closestMatch(v, choices);
-    failAt(key, fmt::format("'{}' is not valid{}; valid choices: {}", v,
-                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joinKeys(choices)));
+    failAt(key,
+           fmt::format("'{}' is not valid{}; valid choices: {}", v,
+                       near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joinKeys(choices)));
   }
   return v;
 }
@@ -170,7 +176,9 @@ std::vector<std::string> YamlMap::strings(const std::string& key) const {
   }
   return out;
 }
-YamlMap YamlMap::map(const std::string& key) const { return YamlMap(require(key), file_, childPath(key)); }
+YamlMap YamlMap::map(const std::string& key) const {
+  return YamlMap(require(key), file_, childPath(key));
+}
 
 void YamlMap::finish(const std::vector<std::string>& validKeys) const {
   for (const auto& kv : node_) {
@@ -220,8 +228,8 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
     if (cur.IsSequence()) {
       const std::size_t idx = listIndex(p, assignment);
       if (idx >= cur.size())
-        throw InputError(fmt::format("--set '{}': index {} out of range (list has {} entries)", path, idx,
-                                     cur.size()));
+        throw InputError(
+            fmt::format("--set '{}': index {} out of range (list has {} entries)", path, idx, cur.size()));
       chain.push_back(cur[idx]);
     } else {
       chain.push_back(cur[p]);

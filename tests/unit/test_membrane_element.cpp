@@ -81,7 +81,8 @@ TEST_P(RigidRotation, GivesZeroStressForceAndEnergy) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Angles, RigidRotation, ::testing::Values(1e-3, 0.5, 1.5707963267948966, 2.5, 3.14159, 5.0));
+INSTANTIATE_TEST_SUITE_P(Angles, RigidRotation,
+                         ::testing::Values(1e-3, 0.5, 1.5707963267948966, 2.5, 3.14159, 5.0));
 
 TEST(PatchTest, UniformStretchGivesUniformStressAndInteriorEquilibrium) {
   Model model = plateModel(false);

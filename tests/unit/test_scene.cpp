@@ -4,9 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
-
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "structure/model/Error.hpp"
 #include "structure/run/Simulation.hpp"
@@ -122,8 +121,9 @@ TEST(SceneErrors, DegenerateElementIsNamed) {
   std::ofstream(dir / "bad.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n"
                                     "3 0 1 0\n4 1 0 0\n$EndNodes\n$Elements\n2\n1 2 2 1 1 1 2 3\n"
                                     "2 2 2 1 1 1 2 4\n$EndElements\n";
-  std::string yaml = replace(kDrum, "generator: {type: rectangle, size: [1, 1], divisions: [8, 8], pattern: cross}",
-                             "file: bad.msh");
+  std::string yaml =
+      replace(kDrum, "generator: {type: rectangle, size: [1, 1], divisions: [8, 8], pattern: cross}",
+              "file: bad.msh");
   std::ofstream(dir / "case.yaml") << yaml;
   try {
     loadScene(dir / "case.yaml");
@@ -153,7 +153,8 @@ TEST(SceneEffects, OnlyEnabledEffectsAreCreated) {
 TEST(Simulation, UnstableRunStopsWithDiagnosisAndKeepsTheLastGoodState) {
   const fs::path out = tempDir("unstable");
   // A fixed step four times the element limit.
-  Scene s = loadSceneFromString(kDrum, "case.yaml", {"time.fixed_dt=8.0e-4", "time.end=0.2", "time.monitor_every=10"});
+  Scene s = loadSceneFromString(kDrum, "case.yaml",
+                                {"time.fixed_dt=8.0e-4", "time.end=0.2", "time.monitor_every=10"});
   RunOptions opt;
   opt.outDir = out;
   opt.quiet = true;
@@ -192,9 +193,9 @@ TEST(Simulation, AutomaticStepIsStableAndWritesSummary) {
 TEST(Simulation, CtrlCWritesTheStateAndExitsCleanly) {
   const fs::path out = tempDir("interrupt");
   std::ofstream(out / "case.yaml") << replace(kDrum, "end: 0.01", "end: 1.0e6");
-  const std::string cmd = "timeout --preserve-status -s INT 2 " + std::string(FSI_BINARY_DIR) + "/bin/fsi run " +
-                          (out / "case.yaml").string() + " --out " + (out / "run").string() +
-                          " --quiet > /dev/null 2>&1";
+  const std::string cmd = "timeout --preserve-status -s INT 2 " + std::string(FSI_BINARY_DIR) +
+                          "/bin/fsi run " + (out / "case.yaml").string() + " --out " +
+                          (out / "run").string() + " --quiet > /dev/null 2>&1";
   const int status = std::system(cmd.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 130);

@@ -11,6 +11,7 @@ namespace fsi::structure {
 /// What one force evaluation needs and produces. Arrays are 3 per node, xyz interleaved.
 struct ForceContext {
   double time = 0;
+  double loadFactor = 1.0;    ///< scales every external load (incremental loading in static solvers)
   const double* x = nullptr;  ///< current coordinates
   const double* v = nullptr;  ///< velocities (half step behind in central differences)
   double* fint = nullptr;     ///< internal resisting forces (accumulated)

@@ -7,7 +7,7 @@ FollowerPressure::FollowerPressure(std::string label, std::vector<int> triangleC
     : label_(std::move(label)), conn_(std::move(triangleConn)), value_(value), fn_(std::move(f)) {}
 
 void FollowerPressure::addForces(ForceContext& ctx) const {
-  const double p6 = valueAt(ctx.time) / 6.0;  // p A n / 3 = p (d21 x d31) / 6
+  const double p6 = ctx.loadFactor * valueAt(ctx.time) / 6.0;  // p A n / 3 = p (d21 x d31) / 6
   if (p6 == 0.0) return;
   const double* __restrict x = ctx.x;
   double* __restrict f = ctx.fext;
@@ -36,7 +36,7 @@ Gravity::Gravity(const std::vector<double>& physicalMass, std::array<double, 3> 
 }
 
 void Gravity::addForces(ForceContext& ctx) const {
-  const double s = fn_(ctx.time);
+  const double s = ctx.loadFactor * fn_(ctx.time);
   double* __restrict f = ctx.fext;
   const std::size_t n = weight_.size();
   for (std::size_t i = 0; i < n; ++i) f[i] += s * weight_[i];
@@ -47,7 +47,7 @@ NodalForces::NodalForces(std::string label, std::vector<int> nodes, std::array<d
     : label_(std::move(label)), nodes_(std::move(nodes)), force_(force), fn_(std::move(f)) {}
 
 void NodalForces::addForces(ForceContext& ctx) const {
-  const double s = fn_(ctx.time);
+  const double s = ctx.loadFactor * fn_(ctx.time);
   for (int n : nodes_)
     for (int k = 0; k < 3; ++k) ctx.fext[3 * n + k] += s * force_[k];
 }

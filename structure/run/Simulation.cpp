@@ -264,7 +264,109 @@ std::string diagnose(const Scene& scene, const CentralDifference& cd, const Snap
 
 }  // namespace
 
+namespace {
+
+RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
+  using Clock = std::chrono::steady_clock;
+  namespace fs = std::filesystem;
+  fs::create_directories(opt.outDir);
+  Model& model = *scene.model;
+  Nodes& N = model.nodes;
+  const RelaxationSettings& rs = scene.solver.relaxation;
+  RunResult result;
+  if (!opt.quiet) {
+    fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
+    fmt::print("model  {} nodes, {} membrane triangles, {} cables; dynamic relaxation {} (λ = {:.3g}), ε = {:.3g}, "
+               "{} increment(s)\n",
+               N.count, model.membranes.count, model.cables.count, scene.solver.method,
+               rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
+  }
+  Frames frames(scene, opt.outDir / "results.h5");
+  frames.write(0.0, 0);
+  DynamicRelaxation dr(model, scene.effectList(), scene.constraints, rs);
+  gInterrupted = 0;
+  const auto wall0 = Clock::now();
+  const RelaxationResult r = dr.run(
+      [&](int inc, const RelaxationResult& rr) {
+        frames.write(double(inc) / rs.increments, rr.iterations);
+        if (!opt.quiet)
+          fmt::print("increment {}/{} converged: iteration {}, residual ratio {:.3g}, KE/U {:.3g}\n", inc,
+                     rs.increments, rr.iterations, rr.residualRatio, rr.energyRatio);
+      },
+      [] { return gInterrupted != 0; });
+  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+  result.reason = r.converged ? StopReason::Static
+                  : r.diverged ? StopReason::Unstable
+                  : r.message == "interrupted" ? StopReason::Interrupted
+                               : StopReason::NotConverged;
+  if (!r.converged) {
+    frames.write(1.0, r.iterations);
+    result.diagnosis = r.message;
+  }
+  result.probes = evaluateProbes(scene);
+  {
+    std::vector<std::vector<double>> cols(5);
+    for (const auto& h : r.history) {
+      cols[0].push_back(double(h.iteration));
+      cols[1].push_back(h.residualRatio);
+      cols[2].push_back(h.energyRatio);
+      cols[3].push_back(h.kinetic);
+      cols[4].push_back(h.strain);
+    }
+    frames.writer().writeTable("residual", {"iteration", "residual_ratio", "energy_ratio", "kinetic", "strain"},
+                               cols);
+  }
+  frames.writer().close();
+
+  nlohmann::json s;
+  s["scene"] = scene.file.string();
+  s["title"] = scene.title;
+  s["stop_reason"] = toString(result.reason);
+  s["effects"] = scene.enabledEffects;
+  s["probes"] = nlohmann::json::object();
+  for (const auto& [k, v] : result.probes) s["probes"][k] = v;
+  nlohmann::json st;
+  st["solver"] = "dynamic_relaxation";
+  st["method"] = scene.solver.method;
+  st["lambda"] = r.lambda;
+  st["iterations"] = r.iterations;
+  st["converged"] = r.converged;
+  st["final_residual"] = r.residualRatio;
+  st["energy_ratio"] = r.energyRatio;
+  st["tolerance"] = rs.tolerance;
+  st["increments"] = rs.increments;
+  st["kinetic_resets"] = r.kineticResets;
+  st["mass_increases"] = r.massIncreases;
+  st["restarts"] = r.restarts;
+  st["final_lambda"] = r.finalLambda;
+  st["wall_seconds"] = wall;
+  st["seconds_per_iteration"] = r.iterations > 0 ? wall / double(r.iterations) : 0.0;
+  st["nodes"] = N.count;
+  st["dof"] = 3 * N.count;
+  st["membrane_elements"] = model.membranes.count;
+  st["cable_elements"] = model.cables.count;
+  st["strain_energy"] = r.history.empty() ? 0.0 : r.history.back().strain;
+  st["element_updates_per_second"] =
+      wall > 0 ? double(model.membranes.count + model.cables.count) * double(r.iterations) / wall : 0.0;
+  s["stats"] = st;
+  if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
+  result.summary = s;
+  std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
+  if (!opt.quiet) {
+    fmt::print("stop   {} after {} iterations ({} kinetic resets, {} node mass increases, {} restarts), {:.3g} s "
+               "wall, {:.3g} ms per iteration, residual ratio {:.3g}, KE/U {:.3g}\n",
+               toString(result.reason), r.iterations, r.kineticResets, r.massIncreases, r.restarts, wall,
+               1e3 * st["seconds_per_iteration"].get<double>(), r.residualRatio, r.energyRatio);
+    for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
+  }
+  if (!result.diagnosis.empty()) fmt::print(stderr, "error: {}\n", result.diagnosis);
+  return result;
+}
+
+}  // namespace
+
 RunResult runSimulation(Scene& scene, const RunOptions& opt) {
+  if (scene.solver.type == SolverControl::Type::DynamicRelaxation) return runRelaxation(scene, opt);
   using Clock = std::chrono::steady_clock;
   namespace fs = std::filesystem;
   fs::create_directories(opt.outDir);

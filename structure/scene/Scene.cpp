@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "structure/effects/ExternalLoads.hpp"
+#include "structure/integrate/FictitiousMass.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/MeshSources.hpp"
 #include "structure/scene/YamlAccess.hpp"
@@ -393,8 +394,51 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   scene.model = std::make_unique<Model>(buildModel(std::move(inputs), membraneMats, cableMats));
   Model& model = *scene.model;
 
+  // Solver: explicit dynamics (default) or dynamic relaxation.
+  if (top.has("solver")) {
+    YamlMap sv = top.map("solver");
+    const std::string type = sv.choice("type", {"explicit_dynamics", "dynamic_relaxation"});
+    if (type == "dynamic_relaxation") {
+      SolverControl& sc = scene.solver;
+      RelaxationSettings& rs = sc.relaxation;
+      sc.type = SolverControl::Type::DynamicRelaxation;
+      const std::string damping = sv.choice("damping", {"kinetic", "viscous"}, "kinetic");
+      rs.damping = damping == "kinetic" ? RelaxationSettings::Damping::Kinetic : RelaxationSettings::Damping::Viscous;
+      const std::string mass = sv.choice("mass", {"gerschgorin", "gerschgorin_dof", "stress", "rezaiee_pajand"},
+                                         damping == "kinetic" ? "gerschgorin" : "gerschgorin");
+      rs.mass = fictitiousMassRuleFromName(mass);
+      const std::string coef = sv.choice("coefficient", {"underwood", "rezaiee_pajand"}, "underwood");
+      rs.coefficient = coef == "underwood" ? RelaxationSettings::Coefficient::Underwood
+                                           : RelaxationSettings::Coefficient::RezaiePajand;
+      rs.lambda = sv.number("lambda", 0.0);
+      if (rs.lambda < 0) sv.failAt("lambda", "must be > 0 (or absent for the default)");
+      rs.backstep = sv.boolean("backstep", true);
+      rs.tolerance = sv.number("tolerance", 1e-3);
+      if (!(rs.tolerance > 0)) sv.failAt("tolerance", "must be > 0");
+      rs.maxIterations = sv.integer("max_iterations", 200000);
+      if (rs.maxIterations < 1) sv.failAt("max_iterations", "must be >= 1");
+      rs.increments = int(sv.integer("increments", 1));
+      if (rs.increments < 1) sv.failAt("increments", "must be >= 1");
+      rs.loadTime = sv.number("load_time", 0.0);
+      rs.autoMass = sv.boolean("auto_mass", true);
+      rs.updateMasses = sv.boolean("update_masses", false);
+      sv.finish({"type", "damping", "mass", "coefficient", "lambda", "backstep", "tolerance", "max_iterations",
+                 "increments", "load_time", "auto_mass", "update_masses"});
+      if (rs.damping == RelaxationSettings::Damping::Kinetic)
+        sc.method = rs.mass == FictitiousMassRule::StressBound ? "KDR1" : rs.mass == FictitiousMassRule::Gerschgorin ? "KDR" : "KDR-RP";
+      else
+        sc.method = std::string(rs.mass == FictitiousMassRule::RezaiePajand ? "m" : "o") +
+                    (rs.coefficient == RelaxationSettings::Coefficient::RezaiePajand ? "dDR" : "DR");
+    } else {
+      sv.finish({"type"});
+    }
+  }
+  const bool relaxation = scene.solver.type == SolverControl::Type::DynamicRelaxation;
+
   // Time control (mass scaling must precede the effects, which cache wave speeds).
-  {
+  if (relaxation) {
+    if (top.has("time")) top.failAt("time", "a dynamic-relaxation scene has no time control (see 'solver')");
+  } else {
     YamlMap t = top.map("time");
     TimeControl& tc = scene.time;
     if (t.has("until_static")) {
@@ -510,6 +554,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   std::vector<std::unique_ptr<Effect>> loads;
   if (top.has("effects")) {
     YamlMap fx = top.map("effects");
+    if (fx.has("mass_damping") && relaxation)
+      fx.failAt("mass_damping", "dynamic relaxation brings its own damping (solver.damping); remove this effect");
     if (fx.has("mass_damping")) {
       YamlMap d = fx.map("mass_damping");
       scene.time.integrator.massDamping = d.number("alpha");
@@ -592,7 +638,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   for (auto& l : loads) scene.effects.push_back(std::move(l));
 
   // Output.
-  {
+  if (top.has("output") || !relaxation) {
     YamlMap o = top.map("output");
     scene.output.interval = o.number("interval", 0.0);
     if (scene.output.interval < 0) o.failAt("interval", "must be >= 0");
@@ -612,6 +658,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     }
     o.finish({"interval", "fields"});
   }
+
+  if (scene.output.fields.empty() && !top.has("output"))
+    scene.output.fields.insert(allOutputFields().begin(), allOutputFields().end());
 
   // Probes.
   if (top.has("probes")) {
@@ -660,7 +709,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     }
   }
 
-  top.finish({"title", "materials", "meshes", "sets", "constraints", "effects", "time", "output", "probes"});
+  top.finish(
+      {"title", "materials", "meshes", "sets", "constraints", "effects", "solver", "time", "output", "probes"});
   return scene;
 }
 

@@ -2,7 +2,7 @@
 // Scene: a case as read from its YAML file, validated and resolved against the built Model.
 // Everything the run needs is here; nothing is looked up by name in the step loop.
 //
-// Top-level keys: title, materials, meshes, sets, constraints, effects, time, output, probes.
+// Top-level keys: title, materials, meshes, sets, constraints, effects, solver, time, output, probes.
 // See docs/SCENES.md for the full reference.
 
 #include <array>
@@ -16,6 +16,7 @@
 #include "structure/effects/Effect.hpp"
 #include "structure/effects/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"
+#include "structure/integrate/DynamicRelaxation.hpp"
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/MassScaling.hpp"
 #include "structure/model/Model.hpp"
@@ -45,6 +46,14 @@ struct TimeControl {
   CentralDifferenceSettings integrator;
 };
 
+/// Which integrator a scene runs: explicit dynamics (default) or dynamic relaxation to a static state.
+struct SolverControl {
+  enum class Type { ExplicitDynamics, DynamicRelaxation };
+  Type type = Type::ExplicitDynamics;
+  RelaxationSettings relaxation;
+  std::string method;  ///< label of the DR variant (KDR, KDR1, oDR, mdDR, ...)
+};
+
 struct OutputControl {
   double interval = 0;  ///< simulated time between frames; 0 = first and last only
   std::set<std::string> fields;
@@ -59,6 +68,7 @@ struct Scene {
   const CableForces* cable = nullptr;
   Constraints constraints;
   TimeControl time;
+  SolverControl solver;
   OutputControl output;
   std::vector<ProbeSpec> probes;
   MassScalingReport massScaling;

@@ -1,0 +1,85 @@
+#pragma once
+// DynamicRelaxation: the static equilibrium as the end state of a fictitious, damped dynamics (Δt = 1,
+// fictitious masses from stiffness bounds), sharing the force kernels of the explicit solver.
+//
+//   kinetic damping: undamped leapfrog; whenever the kinetic energy drops, the velocities are zeroed
+//     (optionally after stepping back to the kinetic-energy peak, x ← x − ½Δt v);
+//   viscous damping: v(n+½) = [(2 − c) v(n−½) + 2 M⁻¹R] / (2 + c), with c from a Rayleigh-quotient estimate
+//     of the lowest frequency, ω0² = Σ u_i² K̄_ii / Σ u_i² m_i, K̄_ii = −ΔR_i/Δx_i (Underwood: c = 2ω0;
+//     Rezaiee-Pajand: c = sqrt(4ω0² − ω0⁴)).
+// Converged when max(‖R‖∞ / ‖reactions‖∞, E_kin / E_strain) ≤ ε (R: static residual on free dofs).
+// Safeguards: Underwood's apparent-frequency test |ΔR_i| / (4 m_i |Δx_i|) > 1, failed on three iterations in
+// a row, flags a node whose mass is too small for Δt = 1 and raises it by that factor; a divergence (residual
+// up 10⁴-fold or non-finite) restarts the increment with 1.5x the masses. Both are counted in the result.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "structure/effects/Effect.hpp"
+#include "structure/integrate/Constraints.hpp"
+#include "structure/integrate/FictitiousMass.hpp"
+#include "structure/model/Model.hpp"
+
+namespace fsi::structure {
+
+struct RelaxationSettings {
+  enum class Damping { Kinetic, Viscous };
+  enum class Coefficient { Underwood, RezaiePajand };
+  Damping damping = Damping::Kinetic;
+  FictitiousMassRule mass = FictitiousMassRule::Gerschgorin;
+  Coefficient coefficient = Coefficient::Underwood;
+  double lambda = 0;          ///< mass scale; 0 = the rule's default (defaultLambda)
+  bool backstep = true;       ///< kinetic damping: restart from the estimated energy peak
+  double tolerance = 1e-3;    ///< ε
+  long maxIterations = 200000;
+  int increments = 1;         ///< load applied in this many equal increments
+  double loadTime = 0;        ///< time at which load time functions are evaluated
+  bool autoMass = true;       ///< raise masses when the apparent-frequency test fails
+  bool updateMasses = false;  ///< recompute the masses at every kinetic reset (always for the stress rule)
+};
+
+/// Default λ of each rule: the smallest stable value with a margin, no per-mesh tuning.
+double defaultLambda(const RelaxationSettings& s);
+
+struct RelaxationRecord {
+  long iteration;
+  double residualRatio, energyRatio, kinetic, strain;
+};
+
+struct RelaxationResult {
+  long iterations = 0;
+  bool converged = false;
+  bool diverged = false;
+  double residualRatio = 0, energyRatio = 0;
+  int massIncreases = 0;      ///< nodes whose mass the safeguard raised (summed over the run)
+  int kineticResets = 0;
+  int restarts = 0;           ///< increments restarted with 1.5x the masses after a divergence
+  double lambda = 0;          ///< initial mass scale
+  double finalLambda = 0;     ///< after restarts
+  std::vector<RelaxationRecord> history;
+  std::string message;
+};
+
+class DynamicRelaxation {
+ public:
+  DynamicRelaxation(Model& model, std::vector<const Effect*> effects, Constraints constraints,
+                    RelaxationSettings settings);
+  /// Runs all increments. `onIncrement(k, result)` is called after each converged increment (for output);
+  /// `interrupted()` is polled every iteration.
+  RelaxationResult run(const std::function<void(int, const RelaxationResult&)>& onIncrement = {},
+                       const std::function<bool()>& interrupted = {});
+  const std::vector<double>& masses() const { return mass_; }
+
+ private:
+  void forces(double loadFactor);
+  Model& model_;
+  std::vector<const Effect*> effects_;
+  Constraints constraints_;
+  RelaxationSettings s_;
+  std::vector<double> mass_;     ///< fictitious mass per node
+  std::vector<double> free_;     ///< 1 for a free dof, 0 for a constrained one
+  double strain_ = 0;
+};
+
+}  // namespace fsi::structure

@@ -11,7 +11,6 @@ namespace fsi::structure {
 double defaultLambda(const RelaxationSettings& s) {
   switch (s.mass) {
     case FictitiousMassRule::Gerschgorin:
-    case FictitiousMassRule::GerschgorinDof:
       return 0.6;
     case FictitiousMassRule::StressBound:
       return 10.0;
@@ -65,7 +64,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
   restart:
     for (const PrescribedMotion& p : constraints_.prescribed)
       N.x[3 * p.node + p.component] = N.X[3 * p.node + p.component] + lf * p.amplitude * p.fn(s_.loadTime);
-    mass_ = fictitiousDofMasses(model_, N.x.data(), s_.mass, lambda);
+    mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
     // A node with no stiffness at all (e.g. only slack cables) still needs a mass.
     double mmax = 0;
     for (double m : mass_) mmax = std::max(mmax, m);
@@ -85,7 +84,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
           fmax = std::max(fmax, std::abs(N.fext[d]));
           if (free_[d] != 0.0) {
             res = std::max(res, std::abs(R));
-            ke += 0.5 * mass_[d] * N.v[d] * N.v[d];
+            ke += 0.5 * mass_[i] * N.v[d] * N.v[d];
           } else {
             reac = std::max(reac, std::abs(R));
           }
@@ -126,8 +125,8 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
       if (kinetic) {
         double keNew = 0;
         for (int d = 0; d < nd; ++d) {
-          const double vn = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d]) * free_[d];
-          keNew += 0.5 * mass_[d] * vn * vn;
+          const double vn = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
+          keNew += 0.5 * mass_[d / 3] * vn * vn;
         }
         if (!fresh && keNew < kePrev) {
           // Kinetic-energy peak passed: zero the velocities (after stepping back to the peak).
@@ -138,7 +137,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
           fresh = true;
           kePrev = 0;
           if (s_.mass == FictitiousMassRule::StressBound || s_.updateMasses) {
-            mass_ = fictitiousDofMasses(model_, N.x.data(), s_.mass, lambda);
+            mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
             for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
           }
           if (s_.backstep) forces(lf);
@@ -151,7 +150,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
       for (int d = 0; d < nd; ++d) {
         const double R = N.fext[d] - N.fint[d];
         Rprev[d] = R;
-        N.v[d] = (cv * N.v[d] + cr * R / mass_[d]) * free_[d];
+        N.v[d] = (cv * N.v[d] + cr * R / mass_[d / 3]) * free_[d];
         N.x[d] += N.v[d];
       }
       for (const PlaneSlider& sl : constraints_.sliders) {
@@ -178,15 +177,14 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
           if (!kinetic && std::abs(N.v[d]) > 1e-12 * dxMax) {
             const double u = N.x[d] - N.X[d];
             num += u * u * (-dR / N.v[d]);
-            den += u * u * mass_[d];
+            den += u * u * mass_[i];
           }
         }
         if (s_.autoMass && dx2 > 1e-12 * dxMax * dxMax) {
-          const double mi = std::min({mass_[3 * i], mass_[3 * i + 1], mass_[3 * i + 2]});
-          const double ratio = std::sqrt(dR2 / dx2) / (4.0 * mi);
+          const double ratio = std::sqrt(dR2 / dx2) / (4.0 * mass_[i]);
           strikes[i] = ratio > 1.0 ? static_cast<unsigned char>(std::min(strikes[i] + 1, 255)) : 0;
           if (strikes[i] >= 3) {
-            for (int k = 0; k < 3; ++k) mass_[3 * i + k] = std::max(mass_[3 * i + k], 1.2 * ratio * mi);
+            mass_[i] *= 1.2 * ratio;
             strikes[i] = 0;
             ++r.massIncreases;
           }

@@ -7,13 +7,10 @@
 
 namespace fsi::structure {
 
-double kDofMassFloor = 0.1;
-
 FictitiousMassRule fictitiousMassRuleFromName(const std::string& name) {
   if (name == "gerschgorin") return FictitiousMassRule::Gerschgorin;
   if (name == "stress") return FictitiousMassRule::StressBound;
   if (name == "rezaiee_pajand") return FictitiousMassRule::RezaiePajand;
-  if (name == "gerschgorin_dof") return FictitiousMassRule::GerschgorinDof;
   throw InputError("unknown fictitious mass rule '" + name + "'; valid: gerschgorin, stress, rezaiee_pajand");
 }
 
@@ -25,8 +22,6 @@ std::string toString(FictitiousMassRule rule) {
       return "stress";
     case FictitiousMassRule::RezaiePajand:
       return "rezaiee_pajand";
-    case FictitiousMassRule::GerschgorinDof:
-      return "gerschgorin_dof";
   }
   return "?";
 }
@@ -73,6 +68,8 @@ TriangleState triangleState(const MembraneTriangles& T, const MembraneBlock& b, 
 
 }  // namespace
 
+namespace {
+// Per-dof row sums and diagonal of the tangent stiffness, assembled element by element.
 void tangentStiffnessDofBounds(const Model& model, const double* x, std::vector<double>& dofRow,
                                std::vector<double>& dofDiag) {
   const int N = model.nodes.count;
@@ -137,6 +134,8 @@ void tangentStiffnessDofBounds(const Model& model, const double* x, std::vector<
     }
 }
 
+}  // namespace
+
 void tangentStiffnessBounds(const Model& model, const double* x, std::vector<double>& rowSum,
                             std::vector<double>& diagonal) {
   const int N = model.nodes.count;
@@ -149,26 +148,6 @@ void tangentStiffnessBounds(const Model& model, const double* x, std::vector<dou
       rowSum[i] = std::max(rowSum[i], dofRow[3 * i + k]);
       diagonal[i] = std::max(diagonal[i], dofDiag[3 * i + k]);
     }
-}
-
-std::vector<double> fictitiousDofMasses(const Model& model, const double* x, FictitiousMassRule rule,
-                                        double lambda) {
-  const int N = model.nodes.count;
-  std::vector<double> m(3 * N);
-  if (rule != FictitiousMassRule::GerschgorinDof) {
-    const std::vector<double> node = fictitiousMasses(model, x, rule, lambda);
-    for (int i = 0; i < N; ++i) m[3 * i] = m[3 * i + 1] = m[3 * i + 2] = node[i];
-    return m;
-  }
-  std::vector<double> row, diag;
-  tangentStiffnessDofBounds(model, x, row, diag);
-  for (int i = 0; i < N; ++i) {
-    const double nodeMax = std::max({row[3 * i], row[3 * i + 1], row[3 * i + 2]});
-    // A direction without stiffness yet (the normal of a flat membrane) borrows a share of the node's
-    // largest bound: it must not get an infinite acceleration.
-    for (int k = 0; k < 3; ++k) m[3 * i + k] = 0.5 * lambda * std::max(row[3 * i + k], kDofMassFloor * nodeMax);
-  }
-  return m;
 }
 
 std::vector<double> fictitiousMasses(const Model& model, const double* x, FictitiousMassRule rule,
@@ -202,7 +181,7 @@ std::vector<double> fictitiousMasses(const Model& model, const double* x, Fictit
   std::vector<double> row, diag;
   tangentStiffnessBounds(model, x, row, diag);
   for (int i = 0; i < N; ++i)
-    m[i] = rule != FictitiousMassRule::RezaiePajand ? 0.5 * lambda * row[i]
+    m[i] = rule == FictitiousMassRule::Gerschgorin ? 0.5 * lambda * row[i]
                                                    : lambda * std::max(diag[i], 0.5 * row[i]);
   return m;
 }

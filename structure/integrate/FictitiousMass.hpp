@@ -15,18 +15,7 @@ enum class FictitiousMassRule {
   Gerschgorin,   ///< m_i = (λ/2) max over the node's 3 dofs of Σ_j |K_ij|   (thesis "proposal 2")
   StressBound,   ///< m_i = (λ/2) Σ_e (t/4)[K + G + tr S/3 + S_vm/2]           (thesis "proposal 1")
   RezaiePajand,  ///< m_i = λ max over dofs of max(K_ii, ½ Σ_j |K_ij|)         (λ = 0.5: the R-P masses)
-  GerschgorinDof,  ///< m_r = (λ/2) Σ_j |K_rj| per dof (floored at a share of the node's largest bound)
 };
-
-extern double kDofMassFloor;
-
-/// Per-dof row sums and diagonal of the tangent stiffness (3 per node).
-void tangentStiffnessDofBounds(const Model& model, const double* x, std::vector<double>& dofRow,
-                               std::vector<double>& dofDiag);
-
-/// Fictitious masses per dof (3 per node); node rules give the same mass to the node's three dofs.
-std::vector<double> fictitiousDofMasses(const Model& model, const double* x, FictitiousMassRule rule,
-                                        double lambda);
 
 FictitiousMassRule fictitiousMassRuleFromName(const std::string& name);
 std::string toString(FictitiousMassRule rule);

@@ -171,6 +171,12 @@ class Frames {
     for (int i = 0; i < 3 * N.count; ++i) u_[i] = N.x[i] - N.X[i];
     if (f.count("displacement")) views.push_back({"displacement", FieldView::Center::Node, 3, u_.data()});
     if (f.count("velocity")) views.push_back({"velocity", FieldView::Center::Node, 3, N.v.data()});
+    if (f.count("residual")) {
+      // Out-of-balance force f_ext − f_int on free dofs (forces as last evaluated by the solver).
+      r_.resize(3 * N.count);
+      for (int i = 0; i < 3 * N.count; ++i) r_[i] = N.invMassDof[i] != 0.0 ? N.fext[i] - N.fint[i] : 0.0;
+      views.push_back({"residual", FieldView::Center::Node, 3, r_.data()});
+    }
     if (scene_.membrane && (f.count("stress") || f.count("principal_stress") || f.count("wrinkle_state"))) {
       scene_.membrane->evaluate(N.x.data(), stress_);
       major_.resize(m.membranes.count);
@@ -201,7 +207,7 @@ class Frames {
  private:
   const Scene& scene_;
   std::unique_ptr<ResultsWriter> writer_;
-  std::vector<double> u_, major_, minor_, tension_;
+  std::vector<double> u_, r_, major_, minor_, tension_;
   MembraneStressField stress_;
   double lastTime_ = -1;
 };

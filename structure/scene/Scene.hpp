@@ -86,7 +86,7 @@ Scene loadSceneFromString(const std::string& yaml, const std::string& name,
                           const std::vector<std::string>& overrides = {});
 
 inline const std::vector<std::string>& allOutputFields() {
-  static const std::vector<std::string> f{"displacement",     "velocity",      "stress",
+  static const std::vector<std::string> f{"displacement",     "velocity",      "residual",   "stress",
                                           "principal_stress", "wrinkle_state", "cable_force"};
   return f;
 }

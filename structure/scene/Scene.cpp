@@ -637,7 +637,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   for (auto& l : loads) scene.effects.push_back(std::move(l));
 
   // Output.
-  if (top.has("output") || !relaxation) {
+  if (top.has("output")) {
     YamlMap o = top.map("output");
     scene.output.interval = o.number("interval", 0.0);
     if (scene.output.interval < 0) o.failAt("interval", "must be >= 0");

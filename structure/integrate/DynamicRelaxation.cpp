@@ -11,7 +11,7 @@ namespace fsi::structure {
 double defaultLambda(const RelaxationSettings& s) {
   switch (s.mass) {
     case FictitiousMassRule::Gerschgorin:
-      return 0.6;
+      return 0.7;
     case FictitiousMassRule::StressBound:
       return 10.0;
     case FictitiousMassRule::RezaiePajand:

@@ -20,8 +20,8 @@ double defaultLambda(const RelaxationSettings& s) {
   return 0.6;
 }
 
-DynamicRelaxation::DynamicRelaxation(Model& model, std::vector<const Effect*> effects, Constraints constraints,
-                                     RelaxationSettings settings)
+DynamicRelaxation::DynamicRelaxation(Model& model, std::vector<const Effect*> effects,
+                                     Constraints constraints, RelaxationSettings settings)
     : model_(model), effects_(std::move(effects)), constraints_(std::move(constraints)), s_(settings) {
   constraints_.applyTo(model_.nodes);
   free_.resize(3 * model_.nodes.count);
@@ -192,15 +192,17 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
       }
       if (!kinetic && den > 0) {
         const double w2 = std::max(0.0, num / den);
-        c = s_.coefficient == RelaxationSettings::Coefficient::Underwood ? 2.0 * std::sqrt(w2)
-                                                                         : std::sqrt(std::max(0.0, 4 * w2 - w2 * w2));
+        c = s_.coefficient == RelaxationSettings::Coefficient::Underwood
+                ? 2.0 * std::sqrt(w2)
+                : std::sqrt(std::max(0.0, 4 * w2 - w2 * w2));
       }
     }
     if (!converged) {
       r.converged = false;
-      r.message = fmt::format("increment {} of {} did not converge in {} iterations (residual ratio {:.3g}, "
-                              "KE/U {:.3g})",
-                              inc, s_.increments, s_.maxIterations, r.residualRatio, r.energyRatio);
+      r.message = fmt::format(
+          "increment {} of {} did not converge in {} iterations (residual ratio {:.3g}, "
+          "KE/U {:.3g})",
+          inc, s_.increments, s_.maxIterations, r.residualRatio, r.energyRatio);
       return r;
     }
     if (onIncrement) onIncrement(inc, r);

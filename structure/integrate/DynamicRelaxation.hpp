@@ -29,9 +29,9 @@ struct RelaxationSettings {
   Damping damping = Damping::Kinetic;
   FictitiousMassRule mass = FictitiousMassRule::Gerschgorin;
   Coefficient coefficient = Coefficient::Underwood;
-  double lambda = 0;          ///< mass scale; 0 = the rule's default (defaultLambda)
-  bool backstep = true;       ///< kinetic damping: restart from the estimated energy peak
-  double tolerance = 1e-3;    ///< ε
+  double lambda = 0;        ///< mass scale; 0 = the rule's default (defaultLambda)
+  bool backstep = true;     ///< kinetic damping: restart from the estimated energy peak
+  double tolerance = 1e-3;  ///< ε
   long maxIterations = 200000;
   int increments = 1;         ///< load applied in this many equal increments
   double loadTime = 0;        ///< time at which load time functions are evaluated
@@ -52,11 +52,11 @@ struct RelaxationResult {
   bool converged = false;
   bool diverged = false;
   double residualRatio = 0, energyRatio = 0;
-  int massIncreases = 0;      ///< nodes whose mass the safeguard raised (summed over the run)
+  int massIncreases = 0;  ///< nodes whose mass the safeguard raised (summed over the run)
   int kineticResets = 0;
-  int restarts = 0;           ///< increments restarted with 1.5x the masses after a divergence
-  double lambda = 0;          ///< initial mass scale
-  double finalLambda = 0;     ///< after restarts
+  int restarts = 0;        ///< increments restarted with 1.5x the masses after a divergence
+  double lambda = 0;       ///< initial mass scale
+  double finalLambda = 0;  ///< after restarts
   std::vector<RelaxationRecord> history;
   std::string message;
 };
@@ -77,8 +77,8 @@ class DynamicRelaxation {
   std::vector<const Effect*> effects_;
   Constraints constraints_;
   RelaxationSettings s_;
-  std::vector<double> mass_;     ///< fictitious mass per node
-  std::vector<double> free_;     ///< 1 for a free dof, 0 for a constrained one
+  std::vector<double> mass_;  ///< fictitious mass per node
+  std::vector<double> free_;  ///< 1 for a free dof, 0 for a constrained one
   double strain_ = 0;
 };
 

@@ -53,7 +53,8 @@ TriangleState triangleState(const MembraneTriangles& T, const MembraneBlock& b, 
     }
   double C[2][2];
   for (int I = 0; I < 2; ++I)
-    for (int J = 0; J < 2; ++J) C[I][J] = s.F[0][I] * s.F[0][J] + s.F[1][I] * s.F[1][J] + s.F[2][I] * s.F[2][J];
+    for (int J = 0; J < 2; ++J)
+      C[I][J] = s.F[0][I] * s.F[0][J] + s.F[1][I] * s.F[1][J] + s.F[2][I] * s.F[2][J];
   const double e11 = 0.5 * (C[0][0] - 1), e22 = 0.5 * (C[1][1] - 1), g12 = C[0][1];
   s.S[0] = b.c11 * (e11 + b.poisson * e22);
   s.S[1] = b.c11 * (e22 + b.poisson * e11);
@@ -77,9 +78,8 @@ void tangentStiffnessDofBounds(const Model& model, const double* x, std::vector<
   dofDiag.assign(3 * N, 0.0);
   const MembraneTriangles& T = model.membranes;
   for (const MembraneBlock& b : T.blocks) {
-    const double D[3][3] = {{b.c11, b.c11 * b.poisson, 0},
-                            {b.c11 * b.poisson, b.c11, 0},
-                            {0, 0, 0.5 * b.c11 * (1 - b.poisson)}};
+    const double D[3][3] = {
+        {b.c11, b.c11 * b.poisson, 0}, {b.c11 * b.poisson, b.c11, 0}, {0, 0, 0.5 * b.c11 * (1 - b.poisson)}};
     for (int e = b.begin; e < b.end; ++e) {
       const TriangleState s = triangleState(T, b, x, e);
       // B_a (Voigt 11, 22, 2·12 by dof i): strain variation per unit motion of node a along i.
@@ -162,7 +162,8 @@ std::vector<double> fictitiousMasses(const Model& model, const double* x, Fictit
       for (int e = b.begin; e < b.end; ++e) {
         const TriangleState s = triangleState(T, b, x, e);
         const double tr = s.S[0] + s.S[1];
-        const double vm = std::sqrt(s.S[0] * s.S[0] - s.S[0] * s.S[1] + s.S[1] * s.S[1] + 3 * s.S[2] * s.S[2]);
+        const double vm =
+            std::sqrt(s.S[0] * s.S[0] - s.S[0] * s.S[1] + s.S[1] * s.S[1] + 3 * s.S[2] * s.S[2]);
         const double k = 0.25 * mat.thickness * (K + G + tr / 3.0 + 0.5 * vm);
         for (int a = 0; a < 3; ++a) m[T.conn[3 * e + a]] += 0.5 * lambda * k;
       }

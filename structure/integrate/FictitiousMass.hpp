@@ -26,6 +26,7 @@ void tangentStiffnessBounds(const Model& model, const double* x, std::vector<dou
                             std::vector<double>& diagonal);
 
 /// Fictitious nodal masses for a rule and scale λ at configuration x.
-std::vector<double> fictitiousMasses(const Model& model, const double* x, FictitiousMassRule rule, double lambda);
+std::vector<double> fictitiousMasses(const Model& model, const double* x, FictitiousMassRule rule,
+                                     double lambda);
 
 }  // namespace fsi::structure

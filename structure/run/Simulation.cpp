@@ -282,10 +282,11 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   RunResult result;
   if (!opt.quiet) {
     fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
-    fmt::print("model  {} nodes, {} membrane triangles, {} cables; dynamic relaxation {} (λ = {:.3g}), ε = {:.3g}, "
-               "{} increment(s)\n",
-               N.count, model.membranes.count, model.cables.count, scene.solver.method,
-               rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
+    fmt::print(
+        "model  {} nodes, {} membrane triangles, {} cables; dynamic relaxation {} (λ = {:.3g}), ε = {:.3g}, "
+        "{} increment(s)\n",
+        N.count, model.membranes.count, model.cables.count, scene.solver.method,
+        rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
   }
   Frames frames(scene, opt.outDir / "results.h5");
   frames.write(0.0, 0);
@@ -301,10 +302,10 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
       },
       [] { return gInterrupted != 0; });
   const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-  result.reason = r.converged ? StopReason::Static
-                  : r.diverged ? StopReason::Unstable
+  result.reason = r.converged                  ? StopReason::Static
+                  : r.diverged                 ? StopReason::Unstable
                   : r.message == "interrupted" ? StopReason::Interrupted
-                               : StopReason::NotConverged;
+                                               : StopReason::NotConverged;
   if (!r.converged) {
     frames.write(1.0, r.iterations);
     result.diagnosis = r.message;
@@ -319,8 +320,8 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
       cols[3].push_back(h.kinetic);
       cols[4].push_back(h.strain);
     }
-    frames.writer().writeTable("residual", {"iteration", "residual_ratio", "energy_ratio", "kinetic", "strain"},
-                               cols);
+    frames.writer().writeTable("residual",
+                               {"iteration", "residual_ratio", "energy_ratio", "kinetic", "strain"}, cols);
   }
   frames.writer().close();
 
@@ -359,10 +360,11 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   result.summary = s;
   std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
   if (!opt.quiet) {
-    fmt::print("stop   {} after {} iterations ({} kinetic resets, {} node mass increases, {} restarts), {:.3g} s "
-               "wall, {:.3g} ms per iteration, residual ratio {:.3g}, KE/U {:.3g}\n",
-               toString(result.reason), r.iterations, r.kineticResets, r.massIncreases, r.restarts, wall,
-               1e3 * st["seconds_per_iteration"].get<double>(), r.residualRatio, r.energyRatio);
+    fmt::print(
+        "stop   {} after {} iterations ({} kinetic resets, {} node mass increases, {} restarts), {:.3g} s "
+        "wall, {:.3g} ms per iteration, residual ratio {:.3g}, KE/U {:.3g}\n",
+        toString(result.reason), r.iterations, r.kineticResets, r.massIncreases, r.restarts, wall,
+        1e3 * st["seconds_per_iteration"].get<double>(), r.residualRatio, r.energyRatio);
     for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
   }
   if (!result.diagnosis.empty()) fmt::print(stderr, "error: {}\n", result.diagnosis);

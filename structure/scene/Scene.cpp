@@ -403,7 +403,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       RelaxationSettings& rs = sc.relaxation;
       sc.type = SolverControl::Type::DynamicRelaxation;
       const std::string damping = sv.choice("damping", {"kinetic", "viscous"}, "kinetic");
-      rs.damping = damping == "kinetic" ? RelaxationSettings::Damping::Kinetic : RelaxationSettings::Damping::Viscous;
+      rs.damping =
+          damping == "kinetic" ? RelaxationSettings::Damping::Kinetic : RelaxationSettings::Damping::Viscous;
       const std::string mass = sv.choice("mass", {"gerschgorin", "stress", "rezaiee_pajand"}, "gerschgorin");
       rs.mass = fictitiousMassRuleFromName(mass);
       const std::string coef = sv.choice("coefficient", {"underwood", "rezaiee_pajand"}, "underwood");
@@ -421,10 +422,12 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       rs.loadTime = sv.number("load_time", 0.0);
       rs.autoMass = sv.boolean("auto_mass", true);
       rs.updateMasses = sv.boolean("update_masses", false);
-      sv.finish({"type", "damping", "mass", "coefficient", "lambda", "backstep", "tolerance", "max_iterations",
-                 "increments", "load_time", "auto_mass", "update_masses"});
+      sv.finish({"type", "damping", "mass", "coefficient", "lambda", "backstep", "tolerance",
+                 "max_iterations", "increments", "load_time", "auto_mass", "update_masses"});
       if (rs.damping == RelaxationSettings::Damping::Kinetic)
-        sc.method = rs.mass == FictitiousMassRule::StressBound ? "KDR1" : rs.mass == FictitiousMassRule::Gerschgorin ? "KDR" : "KDR-RP";
+        sc.method = rs.mass == FictitiousMassRule::StressBound   ? "KDR1"
+                    : rs.mass == FictitiousMassRule::Gerschgorin ? "KDR"
+                                                                 : "KDR-RP";
       else
         sc.method = std::string(rs.mass == FictitiousMassRule::RezaiePajand ? "m" : "o") +
                     (rs.coefficient == RelaxationSettings::Coefficient::RezaiePajand ? "dDR" : "DR");
@@ -554,7 +557,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   if (top.has("effects")) {
     YamlMap fx = top.map("effects");
     if (fx.has("mass_damping") && relaxation)
-      fx.failAt("mass_damping", "dynamic relaxation brings its own damping (solver.damping); remove this effect");
+      fx.failAt("mass_damping",
+                "dynamic relaxation brings its own damping (solver.damping); remove this effect");
     if (fx.has("mass_damping")) {
       YamlMap d = fx.map("mass_damping");
       scene.time.integrator.massDamping = d.number("alpha");
@@ -708,8 +712,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     }
   }
 
-  top.finish(
-      {"title", "materials", "meshes", "sets", "constraints", "effects", "solver", "time", "output", "probes"});
+  top.finish({"title", "materials", "meshes", "sets", "constraints", "effects", "solver", "time", "output",
+              "probes"});
   return scene;
 }
 

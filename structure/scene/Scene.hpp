@@ -16,8 +16,8 @@
 #include "structure/effects/Effect.hpp"
 #include "structure/effects/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"
-#include "structure/integrate/DynamicRelaxation.hpp"
 #include "structure/integrate/Constraints.hpp"
+#include "structure/integrate/DynamicRelaxation.hpp"
 #include "structure/integrate/MassScaling.hpp"
 #include "structure/model/Model.hpp"
 

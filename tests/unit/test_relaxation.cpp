@@ -81,9 +81,10 @@ TEST(Relaxation, FlatStartWithZeroNormalStiffnessConverges) {
 TEST(Relaxation, AgreesWithTheExplicitSolverStaticState) {
   // Same sheet, tight tolerance, against damped explicit dynamics run to rest.
   const RunResult dr = runString(kFlatSheet, {"solver.tolerance=1.0e-7"}, "dr-vs-cd-dr");
-  const std::string dynamic = std::string(kFlatSheet).replace(std::string(kFlatSheet).find("solver:"),
-                                                              std::string("solver: {type: dynamic_relaxation}").size(),
-                                                              "time: {until_static: {tolerance: 1.0e-12, max_time: 5}}");
+  const std::string dynamic = std::string(kFlatSheet)
+                                  .replace(std::string(kFlatSheet).find("solver:"),
+                                           std::string("solver: {type: dynamic_relaxation}").size(),
+                                           "time: {until_static: {tolerance: 1.0e-12, max_time: 5}}");
   const RunResult cd = runString(dynamic, {"effects.mass_damping={alpha: 100}"}, "dr-vs-cd-cd");
   ASSERT_EQ(dr.reason, StopReason::Static);
   ASSERT_EQ(cd.reason, StopReason::Static);
@@ -92,12 +93,13 @@ TEST(Relaxation, AgreesWithTheExplicitSolverStaticState) {
 
 TEST(Relaxation, SlackAndWrinkledRegionsConverge) {
   // Edges pulled 2% inwards: the sheet starts slack, and a light pressure leaves wrinkled zones.
-  const std::string yaml = std::string(kFlatSheet).replace(
-      std::string(kFlatSheet).find("  - {nodes: sheet/boundary, fix: all}"),
-      std::string("  - {nodes: sheet/boundary, fix: all}").size(),
-      "  - {nodes: sheet/xmin, prescribe: {component: x, amplitude: 0.01}}\n"
-      "  - {nodes: sheet/xmax, prescribe: {component: x, amplitude: -0.01}}\n"
-      "  - {nodes: sheet/boundary, fix: [y, z]}");
+  const std::string yaml =
+      std::string(kFlatSheet)
+          .replace(std::string(kFlatSheet).find("  - {nodes: sheet/boundary, fix: all}"),
+                   std::string("  - {nodes: sheet/boundary, fix: all}").size(),
+                   "  - {nodes: sheet/xmin, prescribe: {component: x, amplitude: 0.01}}\n"
+                   "  - {nodes: sheet/xmax, prescribe: {component: x, amplitude: -0.01}}\n"
+                   "  - {nodes: sheet/boundary, fix: [y, z]}");
   const RunResult r = runString(yaml, {"effects.pressure.value=20"}, "dr-slack");
   ASSERT_EQ(r.reason, StopReason::Static) << r.diagnosis;
   Scene s = loadSceneFromString(yaml, "sheet.yaml", {"effects.pressure.value=20"});
@@ -127,8 +129,10 @@ TEST(Relaxation, TooLightMassesAreCaughtNotSilent) {
   // without them it stops as diverged with a message.
   const RunResult safe = runCase("cushion-square-25", {"solver.lambda=0.2"}, "dr-light-safe");
   EXPECT_EQ(safe.reason, StopReason::Static);
-  EXPECT_GT(safe.summary["stats"]["restarts"].get<int>() + safe.summary["stats"]["mass_increases"].get<int>(), 0);
-  const RunResult bare = runCase("cushion-square-25", {"solver.lambda=0.2", "solver.auto_mass=false"}, "dr-light");
+  EXPECT_GT(safe.summary["stats"]["restarts"].get<int>() + safe.summary["stats"]["mass_increases"].get<int>(),
+            0);
+  const RunResult bare =
+      runCase("cushion-square-25", {"solver.lambda=0.2", "solver.auto_mass=false"}, "dr-light");
   EXPECT_NE(bare.reason, StopReason::Static);
   EXPECT_NE(bare.exitCode(), 0);
   EXPECT_FALSE(bare.diagnosis.empty());

@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace fsi::structure {
 
@@ -27,5 +28,12 @@ class Effect {
   virtual std::string name() const = 0;
   virtual void addForces(ForceContext& ctx) const = 0;
 };
+
+struct Nodes;
+
+/// Zeroes the node force arrays and lets every effect add its forces at the nodes' current state.
+/// The returned context holds the smallest element stable step and (if asked) the strain energy.
+ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& effects, double time,
+                             double loadFactor, bool wantEnergy);
 
 }  // namespace fsi::structure

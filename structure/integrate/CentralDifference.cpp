@@ -23,17 +23,7 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
 }
 
 double CentralDifference::computeForces(bool withEnergy) {
-  Nodes& N = model_.nodes;
-  std::fill(N.fint.begin(), N.fint.end(), 0.0);
-  std::fill(N.fext.begin(), N.fext.end(), 0.0);
-  ForceContext ctx;
-  ctx.time = time_;
-  ctx.x = N.x.data();
-  ctx.v = N.v.data();
-  ctx.fint = N.fint.data();
-  ctx.fext = N.fext.data();
-  ctx.wantEnergy = withEnergy;
-  for (const Effect* e : effects_) e->addForces(ctx);
+  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, withEnergy);
   if (withEnergy) ledger_.strain = ctx.strainEnergy;
   stableDt_ = ctx.minStableDt;
   return ctx.minStableDt;

@@ -29,19 +29,7 @@ DynamicRelaxation::DynamicRelaxation(Model& model, std::vector<const Effect*> ef
 }
 
 void DynamicRelaxation::forces(double loadFactor) {
-  Nodes& N = model_.nodes;
-  std::fill(N.fint.begin(), N.fint.end(), 0.0);
-  std::fill(N.fext.begin(), N.fext.end(), 0.0);
-  ForceContext ctx;
-  ctx.time = s_.loadTime;
-  ctx.loadFactor = loadFactor;
-  ctx.x = N.x.data();
-  ctx.v = N.v.data();
-  ctx.fint = N.fint.data();
-  ctx.fext = N.fext.data();
-  ctx.wantEnergy = true;
-  for (const Effect* e : effects_) e->addForces(ctx);
-  strain_ = ctx.strainEnergy;
+  strain_ = evaluateEffects(model_.nodes, effects_, s_.loadTime, loadFactor, true).strainEnergy;
 }
 
 RelaxationResult DynamicRelaxation::run(const std::function<void(int, const RelaxationResult&)>& onIncrement,

@@ -272,6 +272,31 @@ std::string diagnose(const Scene& scene, const CentralDifference& cd, const Snap
 
 namespace {
 
+// The parts of summary.json every solver writes.
+nlohmann::json summaryHead(const Scene& scene, const RunResult& result) {
+  nlohmann::json s;
+  s["scene"] = scene.file.string();
+  s["title"] = scene.title;
+  s["stop_reason"] = toString(result.reason);
+  s["effects"] = scene.enabledEffects;
+  s["probes"] = nlohmann::json::object();
+  for (const auto& [k, v] : result.probes) s["probes"][k] = v;
+  return s;
+}
+
+// Stores the summary in the result and in DIR/summary.json; reports the diagnosis on stderr.
+void writeSummary(nlohmann::json s, RunResult& result, const RunOptions& opt) {
+  if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
+  result.summary = s;
+  std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
+}
+
+void printProbesAndDiagnosis(const RunResult& result, bool quiet) {
+  if (!quiet)
+    for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
+  if (!result.diagnosis.empty()) fmt::print(stderr, "error: {}\n", result.diagnosis);
+}
+
 RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
   namespace fs = std::filesystem;
@@ -325,13 +350,7 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   }
   frames.writer().close();
 
-  nlohmann::json s;
-  s["scene"] = scene.file.string();
-  s["title"] = scene.title;
-  s["stop_reason"] = toString(result.reason);
-  s["effects"] = scene.enabledEffects;
-  s["probes"] = nlohmann::json::object();
-  for (const auto& [k, v] : result.probes) s["probes"][k] = v;
+  nlohmann::json s = summaryHead(scene, result);
   nlohmann::json st;
   st["solver"] = "dynamic_relaxation";
   st["method"] = scene.solver.method;
@@ -356,18 +375,15 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   st["element_updates_per_second"] =
       wall > 0 ? double(model.membranes.count + model.cables.count) * double(r.iterations) / wall : 0.0;
   s["stats"] = st;
-  if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
-  result.summary = s;
-  std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
+  writeSummary(s, result, opt);
   if (!opt.quiet) {
     fmt::print(
         "stop   {} after {} iterations ({} kinetic resets, {} node mass increases, {} restarts), {:.3g} s "
         "wall, {:.3g} ms per iteration, residual ratio {:.3g}, KE/U {:.3g}\n",
         toString(result.reason), r.iterations, r.kineticResets, r.massIncreases, r.restarts, wall,
         1e3 * st["seconds_per_iteration"].get<double>(), r.residualRatio, r.energyRatio);
-    for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
   }
-  if (!result.diagnosis.empty()) fmt::print(stderr, "error: {}\n", result.diagnosis);
+  printProbesAndDiagnosis(result, opt.quiet);
   return result;
 }
 
@@ -524,13 +540,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   frames.writer().close();
 
   const EnergyLedger& E = cd.energy();
-  nlohmann::json s;
-  s["scene"] = scene.file.string();
-  s["title"] = scene.title;
-  s["stop_reason"] = toString(result.reason);
-  s["effects"] = scene.enabledEffects;
-  for (const auto& [k, v] : result.probes) s["probes"][k] = v;
-  if (scene.probes.empty()) s["probes"] = nlohmann::json::object();
+  nlohmann::json s = summaryHead(scene, result);
   const long elements = model.membranes.count + model.cables.count;
   nlohmann::json st;
   st["steps"] = steps;
@@ -553,9 +563,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   st["added_mass_fraction"] = scene.massScaling.addedFraction();
   if (tc.untilStatic) st["converged"] = result.reason == StopReason::Static;
   s["stats"] = st;
-  if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
-  result.summary = s;
-  std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
+  writeSummary(s, result, opt);
 
   if (!opt.quiet) {
     fmt::print(
@@ -563,9 +571,8 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
         "balance error {:.2e}\n",
         toString(result.reason), steps, cd.time(), wall,
         1e-6 * st["element_updates_per_second"].get<double>(), E.balanceError());
-    for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
   }
-  if (!result.diagnosis.empty()) fmt::print(stderr, "error: {}\n", result.diagnosis);
+  printProbesAndDiagnosis(result, opt.quiet);
   return result;
 }
 

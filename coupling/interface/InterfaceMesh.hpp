@@ -1,0 +1,32 @@
+#pragma once
+// InterfaceMesh: one side's view of the fluid–structure interface in the UNDEFORMED configuration: points and
+// polygonal faces (triangles from the structure, general polygons from OpenFOAM), counter-clockwise about
+// the outward normal. Projections between two such meshes are set up once on these geometries.
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace fsi::coupling {
+
+struct InterfaceMesh {
+  std::string name;
+  std::vector<std::array<double, 3>> points;
+  std::vector<int> faceOffsets{0};  ///< face f has vertices faceNodes[faceOffsets[f] .. faceOffsets[f+1])
+  std::vector<int> faceNodes;
+
+  int numPoints() const { return int(points.size()); }
+  int numFaces() const { return int(faceOffsets.size()) - 1; }
+  int faceSize(int f) const { return faceOffsets[f + 1] - faceOffsets[f]; }
+  const int* face(int f) const { return faceNodes.data() + faceOffsets[f]; }
+  void addFace(std::initializer_list<int> nodes) {
+    faceNodes.insert(faceNodes.end(), nodes);
+    faceOffsets.push_back(int(faceNodes.size()));
+  }
+  void addFace(const std::vector<int>& nodes) {
+    faceNodes.insert(faceNodes.end(), nodes.begin(), nodes.end());
+    faceOffsets.push_back(int(faceNodes.size()));
+  }
+};
+
+}  // namespace fsi::coupling

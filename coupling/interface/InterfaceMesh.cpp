@@ -1,0 +1,1 @@
+#include "coupling/interface/InterfaceMesh.hpp"

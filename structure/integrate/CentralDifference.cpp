@@ -125,4 +125,19 @@ void CentralDifference::restore(const std::vector<double>& x, const std::vector<
   steps_ = steps;
 }
 
+CentralDifference::Checkpoint CentralDifference::checkpoint() const {
+  return {model_.nodes.x, model_.nodes.v, time_, dt_, pendingExt_, pendingInt_, steps_, ledger_};
+}
+
+void CentralDifference::restore(const Checkpoint& c) {
+  model_.nodes.x = c.x;
+  model_.nodes.v = c.v;
+  time_ = c.time;
+  dt_ = c.dt;
+  pendingExt_ = c.pendingExt;
+  pendingInt_ = c.pendingInt;
+  steps_ = c.steps;
+  ledger_ = c.ledger;
+}
+
 }  // namespace fsi::structure

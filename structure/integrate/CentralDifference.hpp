@@ -45,6 +45,16 @@ class CentralDifference {
   void restore(const std::vector<double>& x, const std::vector<double>& v, double time, double dt,
                long steps);
 
+  /// Everything needed to repeat a stretch of time exactly (implicit coupling re-iterates a fluid step).
+  struct Checkpoint {
+    std::vector<double> x, v;
+    double time = 0, dt = 0, pendingExt = 0, pendingInt = 0;
+    long steps = 0;
+    EnergyLedger ledger;
+  };
+  Checkpoint checkpoint() const;
+  void restore(const Checkpoint& c);
+
  private:
   double computeForces(bool withEnergy);
 

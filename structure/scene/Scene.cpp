@@ -640,6 +640,24 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   }
   for (auto& l : loads) scene.effects.push_back(std::move(l));
 
+  // Coupling: the triangles that receive the flow's pressure field (an effect like any other).
+  if (top.has("coupling")) {
+    YamlMap c = top.map("coupling");
+    const auto tris = sets.triangles(c.raw("interface"), c.childPath("interface"));
+    scene.interpolateInterfaceLoads = c.boolean("interpolate_loads", true);
+    c.finish({"interface", "interpolate_loads"});
+    std::vector<int> conn, nodes;
+    for (int e : tris)
+      for (int k = 0; k < 3; ++k) conn.push_back(model.membranes.conn[3 * e + k]);
+    nodes = conn;
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    auto ip = std::make_unique<InterfacePressure>(std::move(conn), std::move(nodes));
+    scene.interfacePressure = ip.get();
+    scene.effects.push_back(std::move(ip));
+    scene.enabledEffects.push_back("interface_pressure");
+  }
+
   // Output.
   if (top.has("output")) {
     YamlMap o = top.map("output");

@@ -14,6 +14,7 @@
 
 #include "structure/effects/CableForces.hpp"
 #include "structure/effects/Effect.hpp"
+#include "structure/effects/InterfacePressure.hpp"
 #include "structure/effects/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/integrate/Constraints.hpp"
@@ -66,6 +67,8 @@ struct Scene {
   std::vector<std::unique_ptr<Effect>> effects;
   const MembraneForces* membrane = nullptr;  ///< owned by `effects`; null without triangles
   const CableForces* cable = nullptr;
+  InterfacePressure* interfacePressure = nullptr;  ///< set when the scene declares a `coupling` interface
+  bool interpolateInterfaceLoads = true;
   Constraints constraints;
   TimeControl time;
   SolverControl solver;

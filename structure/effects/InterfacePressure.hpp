@@ -1,0 +1,43 @@
+#pragma once
+// InterfacePressure: a pressure FIELD given at the nodes of a set of triangles (what a flow solver delivers
+// through the coupling), applied as a follower load: for a triangle with linear p, node a receives
+// ∫ N_a p n dA = (A n / 12)(2 p_a + p_b + p_c) on the CURRENT area and normal. Within a coupling window
+// [t0, t1] the field is interpolated linearly in time between the start and end values (or held at the end
+// value), so subcycling the structure does not feel the fluid step as a staircase.
+
+#include <string>
+#include <vector>
+
+#include "structure/effects/Effect.hpp"
+
+namespace fsi::structure {
+
+class InterfacePressure final : public Effect {
+ public:
+  /// triangleConn: model node indices, 3 per triangle; nodes: the model nodes carrying a pressure value
+  /// (their order defines the order of the pressure arrays).
+  InterfacePressure(std::vector<int> triangleConn, std::vector<int> nodes);
+  std::string name() const override { return "interface_pressure"; }
+  void addForces(ForceContext& ctx) const override;
+
+  /// Pressure values (one per interface node) at the start and end of the window [t0, t1].
+  void setWindow(double t0, double t1, const std::vector<double>& pStart, const std::vector<double>& pEnd,
+                 bool interpolate);
+  const std::vector<int>& nodes() const { return nodes_; }
+  /// Interface triangles as model node indices, 3 per triangle.
+  std::vector<int> triangles() const {
+    std::vector<int> t(conn_.size());
+    for (std::size_t i = 0; i < conn_.size(); ++i) t[i] = nodes_[conn_[i]];
+    return t;
+  }
+
+ private:
+  std::vector<int> conn_;     ///< triangles as local interface node indices
+  std::vector<int> nodes_;    ///< interface node -> model node
+  std::vector<double> p0_, p1_;
+  double t0_ = 0, t1_ = 1;
+  bool interpolate_ = false;
+  mutable std::vector<double> p_;  ///< pressure at the current time (scratch, sized once)
+};
+
+}  // namespace fsi::structure

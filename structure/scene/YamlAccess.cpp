@@ -54,7 +54,7 @@ double asNumber(const YAML::Node& n, const std::string& file, const std::string&
 }
 
 YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
-    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {
+    : node_(node), file_(std::move(file)), path_(std::move(path)) {  // YAML::Node is a handle: copies are cheap
   if (!node_ || node_.IsNull()) {
     node_ = YAML::Node(YAML::NodeType::Map);
   } else if (!node_.IsMap()) {
@@ -126,7 +126,7 @@ std::string YamlMap::string(const std::string& key, const std::string& fallback)
   return has(key) ? string(key) : fallback;
 }
 std::string YamlMap::choice(const std::string& key, const std::vector<std::string>& choices) const {
-  const std::string v = string(key);
+  std::string v = string(key);
   if (std::find(choices.begin(), choices.end(), v) == choices.end()) {
     const std::string near = closestMatch(v, choices);
     failAt(key,

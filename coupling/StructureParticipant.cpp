@@ -51,7 +51,7 @@ void StructureParticipant::setPressure(const std::vector<double>& pStart, const 
 
 void StructureParticipant::advance(double dt) {
   const double t0 = cd_->time(), t1 = t0 + dt;
-  scene_.interfacePressure->setWindow(t0, t1, pStart_, pEnd_, scene_.interpolateInterfaceLoads);
+  scene_.interfacePressure->setWindow(t0, t1, pStart_, pEnd_, scene_.interfaceLoadRule);
   while (cd_->time() < t1 * (1 - 1e-14) - 1e-300) {
     if (!cd_->step(t1, false))
       throw std::runtime_error("structure became unstable at t = " + std::to_string(cd_->time()) + " s");
@@ -88,6 +88,18 @@ std::array<double, 3> StructureParticipant::interfaceForce() const {
   std::array<double, 3> F{0, 0, 0};
   for (std::size_t d = 0; d < fe.size(); ++d) F[d % 3] += fe[d];
   return F;
+}
+
+Eigen::VectorXd StructureParticipant::solve(double t, double dt, const Eigen::VectorXd& loadsStart,
+                                            const Eigen::VectorXd& loadsEnd) {
+  if (std::abs(t - time()) > 1e-9 * std::max(dt, 1e-300))
+    throw std::logic_error("StructureParticipant::solve: window starts at " + std::to_string(t) +
+                           " s but the structure is at " + std::to_string(time()) + " s");
+  setPressure(std::vector<double>(loadsStart.data(), loadsStart.data() + loadsStart.size()),
+              std::vector<double>(loadsEnd.data(), loadsEnd.data() + loadsEnd.size()));
+  advance(dt);
+  const std::vector<double> u = interfaceDisplacement();
+  return Eigen::Map<const Eigen::VectorXd>(u.data(), Eigen::Index(u.size()));
 }
 
 void StructureParticipant::saveCheckpoint() { checkpoint_ = cd_->checkpoint(); }

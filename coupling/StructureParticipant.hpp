@@ -12,12 +12,13 @@
 #include <vector>
 
 #include "coupling/interface/InterfaceMesh.hpp"
+#include "coupling/scheme/Solvers.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/scene/Scene.hpp"
 
 namespace fsi::coupling {
 
-class StructureParticipant {
+class StructureParticipant final : public StructureSolver {
  public:
   explicit StructureParticipant(structure::Scene scene);
   StructureParticipant(const std::filesystem::path& sceneFile, const std::vector<std::string>& overrides = {});
@@ -42,8 +43,12 @@ class StructureParticipant {
   /// Sum of the interface pressure forces at the current state (for conservation checks) [N].
   std::array<double, 3> interfaceForce() const;
 
-  void saveCheckpoint();
-  void restoreCheckpoint();
+  /// StructureSolver: loads = interface pressure per node at both ends of [t, t+dt]; returns the interface
+  /// displacement (3 per node) at t+dt.
+  Eigen::VectorXd solve(double t, double dt, const Eigen::VectorXd& loadsStart,
+                        const Eigen::VectorXd& loadsEnd) override;
+  void saveCheckpoint() override;
+  void restoreCheckpoint() override;
 
   structure::Scene& scene() { return scene_; }
   const structure::CentralDifference& integrator() const { return *cd_; }

@@ -1,6 +1,7 @@
 // fsi: the command-line front end.
 //   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet]
 //   fsi validate CASE_DIR [--out DIR]   runs the checks in CASE_DIR/reference.yaml against their references
+//   fsi map-check SRC DST [--tolerance T] [--json FILE]   checks the projections between two interface meshes
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -9,8 +10,11 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
+#include "coupling/interface/InterfaceIO.hpp"
+#include "coupling/mapping/MapCheck.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
@@ -88,6 +92,38 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   return failures == 0 ? 0 : 1;
 }
 
+// Exit code 0 when every point mapped, 1 when some did not (the summary says which); bad input throws.
+// A negative tolerance selects the default (0.25 x mean edge length).
+int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
+                    const std::string& variant, int quadratureLevel) {
+  if (quadratureLevel < 1) throw fsi::InputError(fmt::format("--quadrature-level {}: must be >= 1", quadratureLevel));
+  fsi::coupling::MapCheckOptions opt;
+  if (variant == "consistent")
+    opt.mass = fsi::coupling::MassMatrix::Consistent;
+  else if (variant == "lumped")
+    opt.mass = fsi::coupling::MassMatrix::Lumped;
+  else if (variant == "dual")
+    opt.mass = fsi::coupling::MassMatrix::Dual;
+  else
+    throw fsi::InputError(fmt::format("--variant {}: must be consistent, lumped or dual", variant));
+  std::ofstream out;
+  if (!jsonOut.empty()) {  // opened first so that a bad path fails before the work
+    out.open(jsonOut);
+    if (!out) throw fsi::InputError(fmt::format("{}: cannot write", jsonOut.string()));
+  }
+  const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterface(src);
+  const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterface(dst);
+  opt.tolerance = tolerance;
+  opt.quadratureLevel = quadratureLevel;
+  const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
+  fmt::print("{}", r.summary());
+  if (!jsonOut.empty()) {
+    out << r.toJson().dump(2) << "\n";
+    if (!out) throw fsi::InputError(fmt::format("{}: write failed", jsonOut.string()));
+  }
+  return r.allMapped() ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -109,10 +145,32 @@ int main(int argc, char** argv) {
   validate->add_option("--out,-o", valOut, "output directory (default results/<case>)");
   validate->add_flag("--quiet,-q", quiet, "no progress output");
 
+  auto* mapCheck = app.add_subcommand(
+      "map-check", "check the projections between two interface meshes (FILE.msh[:GROUP] or CASE_DIR:PATCH)");
+  std::string mapSrc, mapDst;
+  double mapTolerance = -1.0;
+  fs::path mapJson;
+  std::string mapVariant = "consistent";
+  int mapLevel = 1;
+  mapCheck->add_option("source", mapSrc, "first mesh: FILE.msh, FILE.msh:GROUP or CASE_DIR:PATCH")->required();
+  mapCheck->add_option("target", mapDst, "second mesh, same forms")->required();
+  auto* mapTolOpt = mapCheck->add_option(
+      "--tolerance,-t", mapTolerance,
+      "absolute distance beyond which a point is unmapped (default 0.25 x the larger mean edge length)");
+  mapCheck->add_option("--json", mapJson, "also write the results to this JSON file");
+  mapCheck->add_option("--variant", mapVariant, "projection: consistent (default), lumped or dual");
+  mapCheck->add_option("--quadrature-level", mapLevel, "split each target triangle into level^2 for quadrature");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run) return runCommand(scenePath, outDir, sets, quiet);
     if (*validate) return validateCommand(caseDir, valOut, quiet);
+    if (*mapCheck) {
+      if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0))
+        throw fsi::InputError(fmt::format("--tolerance {}: must be a distance >= 0", mapTolerance));
+      return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson, mapVariant,
+                             mapLevel);
+    }
   } catch (const fsi::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

@@ -4,6 +4,7 @@
 // the outward normal. Projections between two such meshes are set up once on these geometries.
 
 #include <array>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct InterfaceMesh {
     faceNodes.insert(faceNodes.end(), nodes.begin(), nodes.end());
     faceOffsets.push_back(int(faceNodes.size()));
   }
+
+  /// Vertex average of face f: the extra fan vertex of polygon faces (see FanTriangulation).
+  std::array<double, 3> faceCentroid(int f) const;
+  /// Mean length of the face edges (a length scale for search tolerances); 0 without faces.
+  double meanEdgeLength() const;
 };
 
 }  // namespace fsi::coupling

@@ -22,18 +22,20 @@ InterfacePressure::InterfacePressure(std::vector<int> triangleConn, std::vector<
 }
 
 void InterfacePressure::setWindow(double t0, double t1, const std::vector<double>& pStart,
-                                  const std::vector<double>& pEnd, bool interpolate) {
+                                  const std::vector<double>& pEnd, WindowLoad rule) {
   if (pStart.size() != nodes_.size() || pEnd.size() != nodes_.size())
     throw std::invalid_argument("interface pressure: one value per interface node expected");
   t0_ = t0;
   t1_ = t1;
   p0_ = pStart;
   p1_ = pEnd;
-  interpolate_ = interpolate;
+  rule_ = rule;
 }
 
 void InterfacePressure::addForces(ForceContext& ctx) const {
-  const double s = interpolate_ && t1_ > t0_ ? std::clamp((ctx.time - t0_) / (t1_ - t0_), 0.0, 1.0) : 1.0;
+  const double s = rule_ == WindowLoad::Mean ? 0.5
+                   : rule_ == WindowLoad::End || !(t1_ > t0_) ? 1.0
+                                                               : std::clamp((ctx.time - t0_) / (t1_ - t0_), 0.0, 1.0);
   const std::size_t n = nodes_.size();
   for (std::size_t i = 0; i < n; ++i) p_[i] = ctx.loadFactor * (p0_[i] + s * (p1_[i] - p0_[i]));
   const double* __restrict x = ctx.x;

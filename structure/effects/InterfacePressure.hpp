@@ -3,7 +3,9 @@
 // through the coupling), applied as a follower load: for a triangle with linear p, node a receives
 // ∫ N_a p n dA = (A n / 12)(2 p_a + p_b + p_c) on the CURRENT area and normal. Within a coupling window
 // [t0, t1] the field is interpolated linearly in time between the start and end values (or held at the end
-// value), so subcycling the structure does not feel the fluid step as a staircase.
+// value). Default: the MEAN of the start and end values held over the window — the window's trapezoidal
+// impulse, as the fluid integrates it; linear interpolation destabilises a subcycled structure under a heavy
+// added mass (docs/COUPLING.md).
 
 #include <string>
 #include <vector>
@@ -11,6 +13,8 @@
 #include "structure/effects/Effect.hpp"
 
 namespace fsi::structure {
+
+enum class WindowLoad { Mean, End, Linear };
 
 class InterfacePressure final : public Effect {
  public:
@@ -22,7 +26,7 @@ class InterfacePressure final : public Effect {
 
   /// Pressure values (one per interface node) at the start and end of the window [t0, t1].
   void setWindow(double t0, double t1, const std::vector<double>& pStart, const std::vector<double>& pEnd,
-                 bool interpolate);
+                 WindowLoad rule);
   const std::vector<int>& nodes() const { return nodes_; }
   /// Interface triangles as model node indices, 3 per triangle.
   std::vector<int> triangles() const {
@@ -36,7 +40,7 @@ class InterfacePressure final : public Effect {
   std::vector<int> nodes_;    ///< interface node -> model node
   std::vector<double> p0_, p1_;
   double t0_ = 0, t1_ = 1;
-  bool interpolate_ = false;
+  WindowLoad rule_ = WindowLoad::Mean;
   mutable std::vector<double> p_;  ///< pressure at the current time (scratch, sized once)
 };
 

@@ -644,8 +644,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   if (top.has("coupling")) {
     YamlMap c = top.map("coupling");
     const auto tris = sets.triangles(c.raw("interface"), c.childPath("interface"));
-    scene.interpolateInterfaceLoads = c.boolean("interpolate_loads", true);
-    c.finish({"interface", "interpolate_loads"});
+    const std::string rule = c.choice("load_in_window", {"mean", "end", "linear"}, "mean");
+    scene.interfaceLoadRule = rule == "mean" ? WindowLoad::Mean : rule == "end" ? WindowLoad::End : WindowLoad::Linear;
+    c.finish({"interface", "load_in_window"});
     std::vector<int> conn, nodes;
     for (int e : tris)
       for (int k = 0; k < 3; ++k) conn.push_back(model.membranes.conn[3 * e + k]);

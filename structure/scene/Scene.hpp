@@ -68,7 +68,7 @@ struct Scene {
   const MembraneForces* membrane = nullptr;  ///< owned by `effects`; null without triangles
   const CableForces* cable = nullptr;
   InterfacePressure* interfacePressure = nullptr;  ///< set when the scene declares a `coupling` interface
-  bool interpolateInterfaceLoads = true;
+  WindowLoad interfaceLoadRule = WindowLoad::Mean;
   Constraints constraints;
   TimeControl time;
   SolverControl solver;

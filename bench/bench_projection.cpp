@@ -1,0 +1,162 @@
+// Google Benchmark of the interface projection (coupling/mapping/L2Projection).
+//   fsi_bench --benchmark_filter=Projection
+// Meshes: a flat unit square, source = structured triangles (the structure), target = structured quads 1.3×
+// finer (the fluid), so no node, edge or quadrature point of one lies on a mesh line of the other. The
+// argument is the number of target nodes. items_per_second = target nodes per second (one field transfer).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "coupling/mapping/L2Projection.hpp"
+
+using namespace fsi::coupling;
+
+namespace {
+
+InterfaceMesh squareMesh(int n, bool quads) {
+  InterfaceMesh m;
+  m.name = quads ? "quads" : "triangles";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.points.push_back({double(i) / n, double(j) / n, 0.0});
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (quads) {
+        m.addFace({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        m.addFace({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        m.addFace({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  return m;
+}
+
+struct Case {
+  InterfaceMesh source, target;
+};
+
+Case makeCase(long targetNodes) {
+  const int nt = std::max(2, int(std::lround(std::sqrt(double(targetNodes)))) - 1);
+  const int ns = std::max(1, int(std::lround(nt / 1.3)));
+  return {squareMesh(ns, false), squareMesh(nt, true)};
+}
+
+// Google Benchmark calls a benchmark function several times while it sizes the iteration count, and the
+// apply benchmarks revisit every size: set each projection up once (10^6 nodes take seconds).
+const L2Projection& cachedProjection(long targetNodes, MassMatrix mass) {
+  static std::map<std::pair<long, MassMatrix>, std::unique_ptr<L2Projection>> cache;
+  std::unique_ptr<L2Projection>& p = cache[{targetNodes, mass}];
+  if (!p) {
+    const Case c = makeCase(targetNodes);
+    p = std::make_unique<L2Projection>(c.source, c.target, ProjectionOptions{mass, 1e-9, 1});
+  }
+  return *p;
+}
+
+void setup(benchmark::State& state, MassMatrix mass) {
+  const Case c = makeCase(state.range(0));
+  double search = 0, assembly = 0, factor = 0;
+  for (auto _ : state) {
+    const L2Projection h(c.source, c.target, ProjectionOptions{mass, 1e-9, 1});
+    benchmark::DoNotOptimize(&h);
+    search += h.report().searchSeconds;
+    assembly += h.report().assemblySeconds;
+    factor += h.report().factorSeconds;
+  }
+  const double n = double(state.iterations());
+  state.counters["search_s"] = search / n;
+  state.counters["assembly_s"] = assembly / n;
+  state.counters["factor_s"] = factor / n;
+  state.counters["target_nodes"] = c.target.numPoints();
+  state.counters["source_nodes"] = c.source.numPoints();
+  state.SetComplexityN(c.target.numPoints());
+  state.SetItemsProcessed(long(state.iterations()) * c.target.numPoints());
+}
+
+void apply(benchmark::State& state, MassMatrix mass, int components, bool transpose) {
+  const L2Projection& h = cachedProjection(state.range(0), mass);
+  std::vector<double> us(std::size_t(components) * std::size_t(h.sourceSize()), 1.0),
+      ut(std::size_t(components) * std::size_t(h.targetSize()), 1.0);
+  for (auto _ : state) {
+    if (transpose)
+      h.applyTranspose(ut.data(), us.data(), components);
+    else
+      h.apply(us.data(), ut.data(), components);
+    benchmark::ClobberMemory();
+  }
+  state.counters["target_nodes"] = h.targetSize();
+  state.counters["nnz_C"] = double(h.coupling().nonZeros());
+  state.SetComplexityN(h.targetSize());
+  state.SetItemsProcessed(long(state.iterations()) * h.targetSize());
+}
+
+void BM_ProjectionSetupConsistent(benchmark::State& s) {
+  setup(s, MassMatrix::Consistent);
+}
+void BM_ProjectionSetupLumped(benchmark::State& s) {
+  setup(s, MassMatrix::Lumped);
+}
+void BM_ProjectionApplyConsistentScalar(benchmark::State& s) {
+  apply(s, MassMatrix::Consistent, 1, false);
+}
+void BM_ProjectionApplyConsistentVector(benchmark::State& s) {
+  apply(s, MassMatrix::Consistent, 3, false);
+}
+void BM_ProjectionTransposeConsistentVector(benchmark::State& s) {
+  apply(s, MassMatrix::Consistent, 3, true);
+}
+void BM_ProjectionApplyLumpedScalar(benchmark::State& s) {
+  apply(s, MassMatrix::Lumped, 1, false);
+}
+void BM_ProjectionApplyLumpedVector(benchmark::State& s) {
+  apply(s, MassMatrix::Lumped, 3, false);
+}
+void BM_ProjectionTransposeLumpedVector(benchmark::State& s) {
+  apply(s, MassMatrix::Lumped, 3, true);
+}
+
+}  // namespace
+
+BENCHMARK(BM_ProjectionSetupConsistent)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity(benchmark::oNLogN);
+BENCHMARK(BM_ProjectionSetupLumped)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity(benchmark::oNLogN);
+BENCHMARK(BM_ProjectionApplyConsistentScalar)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+BENCHMARK(BM_ProjectionApplyConsistentVector)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+BENCHMARK(BM_ProjectionTransposeConsistentVector)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+BENCHMARK(BM_ProjectionApplyLumpedScalar)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+BENCHMARK(BM_ProjectionApplyLumpedVector)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);
+BENCHMARK(BM_ProjectionTransposeLumpedVector)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->Complexity(benchmark::oN);

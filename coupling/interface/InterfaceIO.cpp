@@ -1,0 +1,446 @@
+#include "coupling/interface/InterfaceIO.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "structure/io/GmshReader.hpp"
+#include "structure/model/Error.hpp"
+
+namespace fsi::coupling {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Keeps the points used by the faces, renumbered in order of first use.
+InterfaceMesh compact(std::string name, const std::vector<std::array<double, 3>>& points,
+                      const std::vector<int>& offsets, const std::vector<int>& nodes) {
+  InterfaceMesh m;
+  m.name = std::move(name);
+  std::vector<int> newId(points.size(), -1);
+  m.faceOffsets = offsets;
+  m.faceNodes.reserve(nodes.size());
+  for (int n : nodes) {
+    int& id = newId[std::size_t(n)];
+    if (id < 0) {
+      id = m.numPoints();
+      m.points.push_back(points[std::size_t(n)]);
+    }
+    m.faceNodes.push_back(id);
+  }
+  return m;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// OpenFOAM ASCII files: a tokenizer that knows lines, and the few list forms polyMesh files use.
+
+class FoamLexer {
+ public:
+  struct Token {
+    enum Kind { End, Word, Punct } kind = End;
+    std::string_view text;
+    int line = 0;
+    bool is(char c) const { return kind == Punct && text[0] == c; }
+  };
+
+  explicit FoamLexer(fs::path file) : file_(std::move(file)) {
+    std::ifstream in(file_, std::ios::binary);
+    if (!in) {
+      fs::path gz = file_;
+      gz += ".gz";
+      if (fs::exists(gz))
+        throw InputError(
+            fmt::format("{}: compressed polyMesh files are not supported; uncompress them (gunzip "
+                        "{}) or set writeCompression off and run foamFormatConvert",
+                        gz.string(), gz.string()));
+      throw InputError(fmt::format("{}: no such file or not readable", file_.string()));
+    }
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    text_ = ss.str();
+  }
+
+  const fs::path& file() const { return file_; }
+
+  Token next() {
+    if (peeked_) {
+      peeked_ = false;
+      return peek_;
+    }
+    return scan();
+  }
+  const Token& peek() {
+    if (!peeked_) {
+      peek_ = scan();
+      peeked_ = true;
+    }
+    return peek_;
+  }
+
+  [[noreturn]] void fail(int line, const std::string& what) const {
+    throw InputError(fmt::format("{}:{}: {}", file_.string(), line, what));
+  }
+  static std::string show(const Token& t) {
+    return t.kind == Token::End ? std::string("the end of the file") : fmt::format("'{}'", t.text);
+  }
+  void expect(char c, const char* what) {
+    const Token t = next();
+    if (!t.is(c)) fail(t.line, fmt::format("expected '{}' {} but found {}", c, what, show(t)));
+  }
+  long integer(const char* what) {
+    const Token t = next();
+    long v = 0;
+    const char* end = t.text.data() + t.text.size();
+    if (t.kind != Token::Word || std::from_chars(t.text.data(), end, v).ptr != end)
+      fail(t.line, fmt::format("expected an integer ({}) but found {}", what, show(t)));
+    return v;
+  }
+  double number(const char* what) {
+    const Token t = next();
+    double v = 0;
+    const char* end = t.text.data() + t.text.size();
+    if (t.kind != Token::Word || std::from_chars(t.text.data(), end, v).ptr != end)
+      fail(t.line, fmt::format("expected a number ({}) but found {}", what, show(t)));
+    return v;
+  }
+
+  // The FoamFile header dictionary; returns its "class". Refuses binary files.
+  std::string header() {
+    const Token t = next();
+    if (t.kind != Token::Word || t.text != "FoamFile")
+      fail(t.line, fmt::format("expected the FoamFile header but found {}", show(t)));
+    expect('{', "after FoamFile");
+    std::string cls, format;
+    for (;;) {
+      const Token key = next();
+      if (key.is('}')) break;
+      if (key.kind != Token::Word)
+        fail(key.line, fmt::format("expected a header entry but found {}", show(key)));
+      std::string value;
+      for (Token v = next(); !v.is(';'); v = next()) {
+        if (v.kind == Token::End || v.is('}'))
+          fail(v.line, fmt::format("missing ';' after header entry '{}'", key.text));
+        value += std::string(v.text);
+      }
+      if (key.text == "class") cls = value;
+      if (key.text == "format") format = value;
+    }
+    if (format == "binary")
+      fail(t.line,
+           "binary format is not supported: set 'writeFormat ascii;' in system/controlDict and run "
+           "foamFormatConvert");
+    if (format != "ascii") fail(t.line, fmt::format("unknown format '{}' (ascii expected)", format));
+    return cls;
+  }
+
+  // Opens a list: "N (" or "(" (count unknown, returned as -1).
+  long openList(const char* what) {
+    long count = -1;
+    if (!peek().is('(')) count = integer(what);
+    const Token t = next();
+    if (t.is('{')) fail(t.line, fmt::format("uniform list 'N{{...}}' not supported for {}", what));
+    if (!t.is('(')) fail(t.line, fmt::format("expected '(' to open the {} list but found {}", what, show(t)));
+    if (count < -1) fail(t.line, fmt::format("negative {} count", what));
+    return count;
+  }
+  // True (and consumes it) at the ')' closing a list.
+  bool closes() {
+    if (peek().kind == Token::End) fail(peek().line, "unexpected end of file inside a list (missing ')')");
+    if (!peek().is(')')) return false;
+    next();
+    return true;
+  }
+  void checkCount(long expected, long found, int line, const char* what) const {
+    if (expected >= 0 && expected != found)
+      fail(line, fmt::format("the {} list announces {} entries but has {}", what, expected, found));
+  }
+  int line() { return peek().line; }
+
+ private:
+  Token scan() {
+    skipSpaceAndComments();
+    Token t;
+    t.line = line_;
+    if (pos_ >= text_.size()) return t;
+    const char c = text_[pos_];
+    if (std::string_view("(){};[]").find(c) != std::string_view::npos) {
+      t.kind = Token::Punct;
+      t.text = std::string_view(text_).substr(pos_++, 1);
+      return t;
+    }
+    const std::size_t begin = pos_;
+    if (c == '"') {
+      const std::size_t close = text_.find('"', pos_ + 1);
+      pos_ = close == std::string::npos ? text_.size() : close + 1;
+    } else {
+      while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_])) &&
+             std::string_view("(){};[]\"").find(text_[pos_]) == std::string_view::npos &&
+             !(text_[pos_] == '/' && pos_ + 1 < text_.size() &&
+               (text_[pos_ + 1] == '/' || text_[pos_ + 1] == '*')))
+        ++pos_;
+    }
+    t.kind = Token::Word;
+    t.text = std::string_view(text_).substr(begin, pos_ - begin);
+    return t;
+  }
+  void skipSpaceAndComments() {
+    while (pos_ < text_.size()) {
+      const char c = text_[pos_];
+      if (c == '\n') {
+        ++line_;
+        ++pos_;
+      } else if (std::isspace(static_cast<unsigned char>(c))) {
+        ++pos_;
+      } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '/') {
+        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+      } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '*') {
+        const std::size_t end = text_.find("*/", pos_ + 2);
+        const std::size_t stop = end == std::string::npos ? text_.size() : end + 2;
+        line_ += int(std::count(text_.begin() + long(pos_), text_.begin() + long(stop), '\n'));
+        pos_ = stop;
+      } else {
+        break;
+      }
+    }
+  }
+
+  fs::path file_;
+  std::string text_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+  Token peek_;
+  bool peeked_ = false;
+};
+
+struct Patch {
+  std::string name;
+  long nFaces = -1, startFace = -1;
+  int line = 0;
+};
+
+std::vector<Patch> readBoundary(const fs::path& file) {
+  FoamLexer lex(file);
+  lex.header();
+  const long count = lex.openList("patch");
+  std::vector<Patch> patches;
+  while (!lex.closes()) {
+    const FoamLexer::Token name = lex.next();
+    if (name.kind != FoamLexer::Token::Word)
+      lex.fail(name.line, fmt::format("expected a patch name but found {}", FoamLexer::show(name)));
+    Patch p;
+    p.name = std::string(name.text);
+    p.line = name.line;
+    lex.expect('{', "after the patch name");
+    for (;;) {
+      const FoamLexer::Token key = lex.next();
+      if (key.is('}')) break;
+      if (key.kind != FoamLexer::Token::Word)
+        lex.fail(key.line,
+                 fmt::format("patch '{}': expected an entry but found {}", p.name, FoamLexer::show(key)));
+      if (lex.peek().is('{')) {  // a sub-dictionary: skip it
+        int depth = 0;
+        do {
+          const FoamLexer::Token t = lex.next();
+          if (t.kind == FoamLexer::Token::End) lex.fail(t.line, "unexpected end of file (missing '}')");
+          depth += t.is('{') ? 1 : (t.is('}') ? -1 : 0);
+        } while (depth > 0);
+        continue;
+      }
+      std::vector<FoamLexer::Token> value;
+      for (FoamLexer::Token v = lex.next(); !v.is(';'); v = lex.next()) {
+        if (v.kind == FoamLexer::Token::End || v.is('}'))
+          lex.fail(v.line, fmt::format("patch '{}': missing ';' after '{}'", p.name, key.text));
+        value.push_back(v);
+      }
+      if (key.text == "nFaces" || key.text == "startFace") {
+        long n = -1;
+        const bool ok =
+            value.size() == 1 &&
+            std::from_chars(value[0].text.data(), value[0].text.data() + value[0].text.size(), n).ptr ==
+                value[0].text.data() + value[0].text.size() &&
+            n >= 0;
+        if (!ok)
+          lex.fail(key.line,
+                   fmt::format("patch '{}': {} must be one non-negative integer", p.name, key.text));
+        (key.text == "nFaces" ? p.nFaces : p.startFace) = n;
+      }
+    }
+    if (p.nFaces < 0 || p.startFace < 0)
+      lex.fail(p.line, fmt::format("patch '{}' lacks {}", p.name, p.nFaces < 0 ? "nFaces" : "startFace"));
+    patches.push_back(p);
+  }
+  lex.checkCount(count, long(patches.size()), lex.line(), "patch");
+  return patches;
+}
+
+std::vector<std::array<double, 3>> readPoints(const fs::path& file) {
+  FoamLexer lex(file);
+  lex.header();
+  const long count = lex.openList("point");
+  std::vector<std::array<double, 3>> points;
+  if (count > 0) points.reserve(std::size_t(count));
+  while (!lex.closes()) {
+    lex.expect('(', "to open a point");
+    std::array<double, 3> p;
+    for (double& x : p) x = lex.number("coordinate");
+    lex.expect(')', "to close a point (3 coordinates)");
+    points.push_back(p);
+  }
+  lex.checkCount(count, long(points.size()), lex.line(), "point");
+  return points;
+}
+
+// Faces (faceList "n(a b c ...)" or the two label lists of faceCompactList) as offsets and nodes; every
+// label is checked against the number of points, with its line.
+void readFaces(const fs::path& file, long numPoints, std::vector<int>& offsets, std::vector<int>& nodes) {
+  FoamLexer lex(file);
+  const std::string cls = lex.header();
+  offsets.assign(1, 0);
+  nodes.clear();
+  auto label = [&](long face) {
+    const int line = lex.line();
+    const long v = lex.integer("point label");
+    if (v < 0 || v >= numPoints)
+      lex.fail(line, fmt::format("face {} refers to point {}, but the points file has {} points", face, v,
+                                 numPoints));
+    return int(v);
+  };
+  if (cls == "faceCompactList") {
+    std::vector<long> starts;
+    const long n = lex.openList("face offset");
+    while (!lex.closes()) starts.push_back(lex.integer("face offset"));
+    lex.checkCount(n, long(starts.size()), lex.line(), "face offset");
+    const long m = lex.openList("face label");
+    long face = 0;
+    while (!lex.closes()) {
+      while (face + 1 < long(starts.size()) && long(nodes.size()) >= starts[std::size_t(face) + 1]) ++face;
+      nodes.push_back(label(face));
+    }
+    lex.checkCount(m, long(nodes.size()), lex.line(), "face label");
+    for (std::size_t f = 1; f < starts.size(); ++f) {
+      if (starts[f] < starts[f - 1] || starts[f] > long(nodes.size()))
+        lex.fail(lex.line(),
+                 fmt::format("face offsets are not increasing within the labels at face {}", f - 1));
+      offsets.push_back(int(starts[f]));
+    }
+    return;
+  }
+  const long count = lex.openList("face");
+  if (count > 0) offsets.reserve(std::size_t(count) + 1);
+  while (!lex.closes()) {
+    const long face = long(offsets.size()) - 1;
+    const int line = lex.line();
+    const long n = lex.integer("number of face vertices");
+    lex.expect('(', "to open a face");
+    for (long k = 0; k < n; ++k) nodes.push_back(label(face));
+    lex.expect(')', "to close a face (as many labels as announced)");
+    if (n < 3) lex.fail(line, fmt::format("face {} has {} vertices (at least 3 needed)", face, n));
+    offsets.push_back(int(nodes.size()));
+  }
+  lex.checkCount(count, long(offsets.size()) - 1, lex.line(), "face");
+}
+
+bool endsWithMsh(const std::string& s) {
+  if (s.size() < 4) return false;
+  std::string tail = s.substr(s.size() - 4);
+  std::transform(tail.begin(), tail.end(), tail.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return tail == ".msh";
+}
+
+}  // namespace
+
+InterfaceMesh readOpenFoamPatch(const fs::path& caseDir, const std::string& patch) {
+  const fs::path dir = caseDir / "constant" / "polyMesh";
+  for (const char* name : {"points", "faces", "boundary"})
+    if (!fs::exists(dir / name) && !fs::exists(dir / (std::string(name) + ".gz")))
+      throw InputError(
+          fmt::format("{}: no such file (is {} an OpenFOAM case?)", (dir / name).string(), caseDir.string()));
+  const fs::path boundaryFile = dir / "boundary";
+  const std::vector<Patch> patches = readBoundary(boundaryFile);
+  const auto it =
+      std::find_if(patches.begin(), patches.end(), [&](const Patch& p) { return p.name == patch; });
+  if (it == patches.end()) {
+    std::string names;
+    for (const Patch& p : patches) names += (names.empty() ? "" : ", ") + p.name;
+    throw InputError(fmt::format("{}: no patch '{}'; the patches are: {}", boundaryFile.string(), patch,
+                                 names.empty() ? "(none)" : names));
+  }
+  if (it->nFaces == 0)
+    throw InputError(fmt::format("{}:{}: patch '{}' has no faces", boundaryFile.string(), it->line, patch));
+  const std::vector<std::array<double, 3>> points = readPoints(dir / "points");
+  std::vector<int> offsets, nodes;
+  readFaces(dir / "faces", long(points.size()), offsets, nodes);
+  const long numFaces = long(offsets.size()) - 1;
+  if (it->startFace + it->nFaces > numFaces)
+    throw InputError(fmt::format("{}:{}: patch '{}' spans faces {}..{}, but {} has {} faces",
+                                 boundaryFile.string(), it->line, patch, it->startFace,
+                                 it->startFace + it->nFaces - 1, (dir / "faces").string(), numFaces));
+  const int first = offsets[std::size_t(it->startFace)];
+  std::vector<int> patchOffsets,
+      patchNodes(nodes.begin() + first, nodes.begin() + offsets[std::size_t(it->startFace + it->nFaces)]);
+  for (long f = it->startFace; f <= it->startFace + it->nFaces; ++f)
+    patchOffsets.push_back(offsets[std::size_t(f)] - first);
+  return compact(caseDir.string() + ":" + patch, points, patchOffsets, patchNodes);
+}
+
+InterfaceMesh readGmshInterface(const fs::path& file, const std::string& group) {
+  const structure::MeshData data = structure::readGmsh(file, file.stem().string());
+  std::vector<int> triangles;
+  if (group.empty()) {
+    for (int t = 0; t < int(data.triangles.size()); ++t) triangles.push_back(t);
+  } else {
+    const auto it = data.triangleGroups.find(group);
+    if (it == data.triangleGroups.end()) {
+      std::string names;
+      for (const auto& [name, members] : data.triangleGroups) names += (names.empty() ? "" : ", ") + name;
+      throw InputError(fmt::format("{}: no physical surface group '{}'; the surface groups are: {}",
+                                   file.string(), group, names.empty() ? "(none)" : names));
+    }
+    triangles = it->second;
+  }
+  if (triangles.empty())
+    throw InputError(fmt::format("{}: no triangles{}", file.string(),
+                                 group.empty() ? std::string() : " in group '" + group + "'"));
+  std::vector<int> offsets{0}, nodes;
+  for (int t : triangles) {
+    for (int n : data.triangles[std::size_t(t)]) nodes.push_back(n);
+    offsets.push_back(int(nodes.size()));
+  }
+  return compact(group.empty() ? file.string() : file.string() + ":" + group, data.points, offsets, nodes);
+}
+
+InterfaceMesh readInterface(const std::string& spec) {
+  const char* forms = "expected FILE.msh, FILE.msh:GROUP or CASE_DIR:PATCH";
+  if (spec.empty()) throw InputError(fmt::format("empty interface mesh name ({})", forms));
+  InterfaceMesh m;
+  if (endsWithMsh(spec)) {
+    m = readGmshInterface(spec);
+  } else if (const std::size_t colon = spec.rfind(':'); colon != std::string::npos) {
+    const std::string head = spec.substr(0, colon), tail = spec.substr(colon + 1);
+    if (tail.empty()) throw InputError(fmt::format("'{}': nothing after ':' ({})", spec, forms));
+    if (endsWithMsh(head))
+      m = readGmshInterface(head, tail);
+    else if (fs::is_directory(head))
+      m = readOpenFoamPatch(head, tail);
+    else
+      throw InputError(
+          fmt::format("'{}': {} is neither a .msh file nor a directory ({})", spec, head, forms));
+  } else if (fs::is_directory(spec)) {
+    throw InputError(fmt::format("'{}' is a directory: name the OpenFOAM patch as {}:PATCH", spec, spec));
+  } else {
+    throw InputError(fmt::format("'{}': {}", spec, forms));
+  }
+  m.name = spec;
+  return m;
+}
+
+}  // namespace fsi::coupling

@@ -1,0 +1,122 @@
+#pragma once
+// L2Projection: least-squares (L2) projection of nodal fields between two non-matching interface meshes, set
+// up once on the undeformed geometry (Kalro & Tezduyar 2000). With M_t the target mass matrix and
+// C_ij = ∫_target N_i(x) φ_j(P(x)) dΓ (P = closest-point projection onto the source surface),
+//     consistent:  H = M_t⁻¹ C            exact L2 projection; reproduces linear fields; H is dense, so
+//                                        apply = sparse C, then the LDLᵀ factors of M_t (fill grows ~N log N)
+//     lumped:      H = diag(M_t 1)⁻¹ C   sparse; rows sum to 1; linear fields only on symmetric meshes
+//     dual:        H = D⁻¹ C_ψ           test functions ψ biorthogonal to N make the mass matrix exactly
+//                                        diagonal: sparse AND reproduces linear fields (for large meshes)
+// and the conservative (transpose) transfer F_s = Hᵀ F_t carries forces back the other way with the same
+// virtual work. See docs/PROJECTION.md for the directions, the quadrature and the measured accuracy.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "coupling/interface/InterfaceMesh.hpp"
+#include "coupling/interface/SurfaceSearch.hpp"
+
+namespace fsi::coupling {
+
+enum class MassMatrix { Consistent, Lumped, Dual };
+inline const char* toString(MassMatrix m) {
+  return m == MassMatrix::Consistent ? "consistent" : (m == MassMatrix::Lumped ? "lumped" : "dual");
+}
+
+struct ProjectionOptions {
+  MassMatrix mass = MassMatrix::Consistent;
+  /// Absolute distance: target quadrature points farther than this from the source surface are unmapped.
+  double tolerance = std::numeric_limits<double>::infinity();
+  /// Quadrature of C and M_t: each target fan triangle is split into level² triangles, each integrated by
+  /// the 3-point edge-midpoint rule (exact for quadratics). Raise it when the source is much finer than the
+  /// target, so that every source node receives force through Hᵀ.
+  int quadratureLevel = 1;
+};
+
+/// A target quadrature point that found no source surface within the tolerance.
+struct UnmappedPoint {
+  long id = -1;               ///< quadrature point id (setup order)
+  std::array<double, 3> x{};  ///< its position on the target surface
+  double distance = 0.0;      ///< distance to the closest source point
+};
+
+struct ProjectionReport {
+  std::string source, target;  ///< mesh names
+  int sourceNodes = 0, targetNodes = 0, targetTriangles = 0;
+  long quadraturePoints = 0;
+  long unmappedQuadraturePoints = 0;
+  std::vector<UnmappedPoint> firstUnmappedPoints;  ///< up to kListed
+  /// Target nodes with an unmapped quadrature point in their support (their value lacks part of its data)
+  /// or with no support at all.
+  int unmappedTargetNodes = 0;
+  std::vector<int> firstUnmappedNodes;  ///< up to kListed
+  double maxGap = 0.0;                  ///< largest distance of a mapped quadrature point to the source
+  double searchSeconds = 0.0, assemblySeconds = 0.0, factorSeconds = 0.0, setupSeconds = 0.0;
+  static constexpr std::size_t kListed = 10;
+  bool allMapped() const { return unmappedQuadraturePoints == 0 && unmappedTargetNodes == 0; }
+};
+
+class L2Projection {
+ public:
+  using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+
+  /// Sets up H from `source` to `target` (search, assembly, factorisation of M_t). Unmapped points are
+  /// reported, not fatal. Throws fsi::InputError for invalid meshes (bad faces, no faces).
+  L2Projection(const InterfaceMesh& source, const InterfaceMesh& target,
+               const ProjectionOptions& options = {});
+
+  int sourceSize() const { return ns_; }
+  int targetSize() const { return nt_; }
+  MassMatrix mass() const { return mass_; }
+  const ProjectionReport& report() const { return report_; }
+
+  /// u_t = H u_s for `components` = 1 or 3 (vectors xyz-interleaved). us has sourceSize()·components values,
+  /// ut targetSize()·components. No allocation; uses internal scratch, so one object must not apply from two
+  /// threads at once.
+  void apply(const double* us, double* ut, int components = 1) const;
+  /// f_s = Hᵀ f_t: the conservative transfer (forces target → source), same conventions as apply().
+  void applyTranspose(const double* ft, double* fs, int components = 1) const;
+  void apply(const Eigen::VectorXd& us, Eigen::VectorXd& ut, int components = 1) const;
+  void applyTranspose(const Eigen::VectorXd& ft, Eigen::VectorXd& fs, int components = 1) const;
+
+  /// C (target nodes × source nodes; for Dual, C_ψ with the dual test functions) and the consistent target
+  /// mass matrix M_t (not assembled for Dual: no entries).
+  const SparseRows& coupling() const { return c_; }
+  const SparseRows& targetMass() const { return m_; }
+  /// Per target node: 1 when its whole support mapped (see ProjectionReport::unmappedTargetNodes).
+  const std::vector<unsigned char>& targetNodeMapped() const { return nodeMapped_; }
+  /// Row sums of M_t (the lumped mass, ∫ N_i dΓ).
+  const Eigen::VectorXd& lumpedMass() const { return lumped_; }
+  /// H itself as a sparse matrix. Lumped, Dual: diag⁻¹ C, as sparse as C. Consistent: M_t⁻¹ C is dense in
+  /// principle (the inverse of a mass matrix has no zero entries), so it is solved column by column and
+  /// entries below dropTolerance × (largest entry in its row) are dropped: for inspection and small meshes;
+  /// apply() never forms it.
+  SparseRows operatorMatrix(double dropTolerance = 0.0) const;
+
+ private:
+  template <int K>
+  void applyK(const double* us, double* ut) const;
+  template <int K>
+  void applyTransposeK(const double* ft, double* fs) const;
+  template <int K>
+  void solveInPlace(double* z) const;  // z ← (L D Lᵀ)⁻¹ z in the permuted ordering
+
+  int ns_ = 0, nt_ = 0;
+  MassMatrix mass_;
+  ProjectionReport report_;
+  SparseRows c_, m_;
+  Eigen::VectorXd lumped_, lumpedInv_;
+  // Consistent: P M_t Pᵀ = L D Lᵀ, target row i sits at perm_[i] of the permuted ordering. L is kept in
+  // compressed columns (unit diagonal not stored) for hand-written solves that handle 3 components per
+  // pass over L.
+  std::vector<int> perm_, lp_, li_;
+  std::vector<double> lx_, dinv_;
+  std::vector<unsigned char> nodeMapped_;
+  mutable std::vector<double> scratch_;
+};
+
+}  // namespace fsi::coupling

@@ -1,0 +1,270 @@
+#include "coupling/mapping/MapCheck.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+namespace fsi::coupling {
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+using Clock = std::chrono::steady_clock;
+
+// The test fields, in coordinates centred on and scaled by the bounding box of both meshes so that their
+// size does not depend on the units or the position of the meshes.
+struct TestFields {
+  Vec3 centre{};
+  double scale = 1.0;
+  Vec3 local(const Vec3& x) const {
+    return {(x[0] - centre[0]) / scale, (x[1] - centre[1]) / scale, (x[2] - centre[2]) / scale};
+  }
+  double linear(const Vec3& x) const {
+    const Vec3 y = local(x);
+    return 0.8 * y[0] - 0.5 * y[1] + 0.33 * y[2];
+  }
+  double quadratic(const Vec3& x) const {
+    const Vec3 y = local(x);
+    return y[0] * y[0] + 0.5 * y[0] * y[1] - y[1] * y[2] + 0.7 * y[1] * y[1] - 0.4 * y[2] * y[2] + linear(x);
+  }
+};
+
+TestFields makeFields(const InterfaceMesh& a, const InterfaceMesh& b) {
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const InterfaceMesh* m : {&a, &b})
+    for (const Vec3& p : m->points)
+      for (std::size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+  TestFields f;
+  double extent = 0.0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    f.centre[k] = 0.5 * (lo[k] + hi[k]);
+    extent = std::max(extent, hi[k] - lo[k]);
+  }
+  f.scale = extent > 0.0 ? extent : 1.0;
+  return f;
+}
+
+FieldError fieldError(const L2Projection& h, const InterfaceMesh& src, const InterfaceMesh& dst,
+                      const std::function<double(const Vec3&)>& f) {
+  std::vector<double> us, ut(std::size_t(dst.numPoints()));
+  us.reserve(std::size_t(src.numPoints()));
+  for (const Vec3& p : src.points) us.push_back(f(p));
+  h.apply(us.data(), ut.data());
+  double lo = HUGE_VAL, hi = -HUGE_VAL, maxErr = 0.0, sum2 = 0.0;
+  long n = 0;
+  for (int i = 0; i < dst.numPoints(); ++i) {
+    if (!h.targetNodeMapped()[std::size_t(i)]) continue;
+    const double exact = f(dst.points[std::size_t(i)]);
+    const double e = std::abs(ut[std::size_t(i)] - exact);
+    lo = std::min(lo, exact);
+    hi = std::max(hi, exact);
+    maxErr = std::max(maxErr, e);
+    sum2 += e * e;
+    ++n;
+  }
+  if (n == 0) return {};
+  const double range = hi > lo ? hi - lo : 1.0;
+  return {maxErr / range, std::sqrt(sum2 / double(n)) / range};
+}
+
+void balance(const InterfaceMesh& m, const std::vector<double>& f, const Vec3& origin, Vec3& force,
+             Vec3& moment, double& forceScale, double& momentScale) {
+  force = moment = Vec3{0.0, 0.0, 0.0};
+  forceScale = momentScale = 0.0;
+  for (int i = 0; i < m.numPoints(); ++i) {
+    const Vec3& x = m.points[std::size_t(i)];
+    const Vec3 r{x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]};
+    const double* fi = &f[3 * std::size_t(i)];
+    for (std::size_t k = 0; k < 3; ++k) force[k] += fi[k];
+    moment[0] += r[1] * fi[2] - r[2] * fi[1];
+    moment[1] += r[2] * fi[0] - r[0] * fi[2];
+    moment[2] += r[0] * fi[1] - r[1] * fi[0];
+    const double fn = std::sqrt(fi[0] * fi[0] + fi[1] * fi[1] + fi[2] * fi[2]);
+    forceScale += fn;
+    momentScale += fn * std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  }
+}
+
+template <class Fn>
+double meanSeconds(int repeats, Fn&& fn) {
+  const auto t0 = Clock::now();
+  for (int r = 0; r < repeats; ++r) fn();
+  return std::chrono::duration<double>(Clock::now() - t0).count() / std::max(1, repeats);
+}
+
+DirectionCheck check(const InterfaceMesh& src, const InterfaceMesh& dst, const TestFields& fields,
+                     const ProjectionOptions& po, const MapCheckOptions& options) {
+  const L2Projection h(src, dst, po);
+  DirectionCheck d;
+  d.report = h.report();
+  d.linear = fieldError(h, src, dst, [&](const Vec3& x) { return fields.linear(x); });
+  d.quadratic = fieldError(h, src, dst, [&](const Vec3& x) { return fields.quadratic(x); });
+
+  // A random force field with a non-zero resultant, so the relative force error is meaningful.
+  std::mt19937 rng(options.seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> ft(3 * std::size_t(dst.numPoints())), fs(3 * std::size_t(src.numPoints()));
+  for (std::size_t i = 0; i < ft.size(); ++i) ft[i] = u(rng) + (i % 3 == 2 ? 0.5 : 0.1);
+  h.applyTranspose(ft.data(), fs.data(), 3);
+  Vec3 origin{0.0, 0.0, 0.0};
+  for (const Vec3& p : dst.points)
+    for (std::size_t k = 0; k < 3; ++k) origin[k] += p[k] / dst.numPoints();
+  Vec3 forceT, momentT, forceS, momentS;
+  double forceScale, momentScale, unusedF, unusedM;
+  balance(dst, ft, origin, forceT, momentT, forceScale, momentScale);
+  balance(src, fs, origin, forceS, momentS, unusedF, unusedM);
+  for (std::size_t k = 0; k < 3; ++k) {
+    d.forceError = std::max(d.forceError, std::abs(forceS[k] - forceT[k]) / forceScale);
+    d.momentError = std::max(d.momentError, std::abs(momentS[k] - momentT[k]) / momentScale);
+  }
+
+  std::vector<double> us(3 * std::size_t(src.numPoints()), 1.0), ut(3 * std::size_t(dst.numPoints()));
+  d.applySecondsScalar = meanSeconds(options.applyRepeats, [&] { h.apply(us.data(), ut.data(), 1); });
+  d.applySecondsVector = meanSeconds(options.applyRepeats, [&] { h.apply(us.data(), ut.data(), 3); });
+  d.applyTransposeSecondsVector =
+      meanSeconds(options.applyRepeats, [&] { h.applyTranspose(ft.data(), fs.data(), 3); });
+  return d;
+}
+
+nlohmann::json reportJson(const ProjectionReport& r) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const UnmappedPoint& p : r.firstUnmappedPoints)
+    points.push_back({{"id", p.id}, {"x", p.x}, {"distance", p.distance}});
+  return {{"source", r.source},
+          {"target", r.target},
+          {"source_nodes", r.sourceNodes},
+          {"target_nodes", r.targetNodes},
+          {"target_triangles", r.targetTriangles},
+          {"quadrature_points", r.quadraturePoints},
+          {"unmapped_quadrature_points", r.unmappedQuadraturePoints},
+          {"first_unmapped_quadrature_points", points},
+          {"unmapped_target_nodes", r.unmappedTargetNodes},
+          {"first_unmapped_target_nodes", r.firstUnmappedNodes},
+          {"max_gap", r.maxGap},
+          {"setup_seconds", r.setupSeconds},
+          {"search_seconds", r.searchSeconds},
+          {"assembly_seconds", r.assemblySeconds},
+          {"factor_seconds", r.factorSeconds}};
+}
+
+}  // namespace
+
+MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const MapCheckOptions& options) {
+  MapCheckResult r;
+  r.meshA = a.name;
+  r.meshB = b.name;
+  r.mass = options.mass;
+  r.tolerance =
+      options.tolerance >= 0.0 ? options.tolerance : 0.25 * std::max(a.meanEdgeLength(), b.meanEdgeLength());
+  const TestFields fields = makeFields(a, b);
+  const ProjectionOptions po{options.mass, r.tolerance, options.quadratureLevel};
+  r.directions[0] = check(a, b, fields, po, options);
+  r.directions[1] = check(b, a, fields, po, options);
+  return r;
+}
+
+nlohmann::json MapCheckResult::toJson() const {
+  nlohmann::json dirs = nlohmann::json::array();
+  for (const DirectionCheck& d : directions) {
+    nlohmann::json j = reportJson(d.report);
+    j["linear_error"] = {{"max", d.linear.max}, {"rms", d.linear.rms}};
+    j["quadratic_error"] = {{"max", d.quadratic.max}, {"rms", d.quadratic.rms}};
+    j["conservative_force_error"] = d.forceError;
+    j["conservative_moment_error"] = d.momentError;
+    j["apply_seconds_scalar"] = d.applySecondsScalar;
+    j["apply_seconds_vector"] = d.applySecondsVector;
+    j["apply_transpose_seconds_vector"] = d.applyTransposeSecondsVector;
+    dirs.push_back(j);
+  }
+  return {{"mesh_a", meshA},
+          {"mesh_b", meshB},
+          {"tolerance", tolerance},
+          {"variant", toString(mass)},
+          {"errors_relative_to", "range of the exact field over the mapped target nodes"},
+          {"directions", dirs},
+          {"all_mapped", allMapped()}};
+}
+
+std::string MapCheckResult::summary() const {
+  const DirectionCheck& ab = directions[0];
+  const DirectionCheck& ba = directions[1];
+  std::string s = fmt::format("map-check  A = {} ({} nodes)\n           B = {} ({} nodes)\n", meshA,
+                              ab.report.sourceNodes, meshB, ab.report.targetNodes);
+  s += fmt::format("tolerance {:.4g} (absolute), {} projection\n\n", tolerance, toString(mass));
+  auto row = [&](const std::string& label, const std::string& x, const std::string& y) {
+    s += fmt::format("  {:<44} {:>22} {:>22}\n", label, x, y);
+  };
+  auto both = [&](const std::string& label, auto get, const char* format) {
+    row(label, fmt::format(fmt::runtime(format), get(ab)), fmt::format(fmt::runtime(format), get(ba)));
+  };
+  row("", "A -> B", "B -> A");
+  both(
+      "target quadrature points", [](const DirectionCheck& d) { return d.report.quadraturePoints; }, "{}");
+  both(
+      "  not mapped", [](const DirectionCheck& d) { return d.report.unmappedQuadraturePoints; }, "{}");
+  both(
+      "target nodes not (fully) mapped", [](const DirectionCheck& d) { return d.report.unmappedTargetNodes; },
+      "{}");
+  both(
+      "largest gap between the surfaces", [](const DirectionCheck& d) { return d.report.maxGap; }, "{:.3g}");
+  both(
+      "linear field, max error (rel. to range)", [](const DirectionCheck& d) { return d.linear.max; },
+      "{:.3e}");
+  both(
+      "linear field, rms error", [](const DirectionCheck& d) { return d.linear.rms; }, "{:.3e}");
+  both(
+      "quadratic field, max error", [](const DirectionCheck& d) { return d.quadratic.max; }, "{:.3e}");
+  both(
+      "quadratic field, rms error", [](const DirectionCheck& d) { return d.quadratic.rms; }, "{:.3e}");
+  both(
+      "conservative (H^T) force error", [](const DirectionCheck& d) { return d.forceError; }, "{:.3e}");
+  both(
+      "conservative (H^T) moment error", [](const DirectionCheck& d) { return d.momentError; }, "{:.3e}");
+  both(
+      "setup [s]", [](const DirectionCheck& d) { return d.report.setupSeconds; }, "{:.4f}");
+  both(
+      "  search / assembly / factorisation [s]",
+      [](const DirectionCheck& d) {
+        return fmt::format("{:.3f}/{:.3f}/{:.3f}", d.report.searchSeconds, d.report.assemblySeconds,
+                           d.report.factorSeconds);
+      },
+      "{}");
+  both(
+      "apply, scalar field [ms]", [](const DirectionCheck& d) { return 1e3 * d.applySecondsScalar; },
+      "{:.4f}");
+  both(
+      "apply, vector field [ms]", [](const DirectionCheck& d) { return 1e3 * d.applySecondsVector; },
+      "{:.4f}");
+  both(
+      "transpose, vector field [ms]",
+      [](const DirectionCheck& d) { return 1e3 * d.applyTransposeSecondsVector; }, "{:.4f}");
+  s += "\n";
+  if (allMapped()) {
+    s += "all points mapped\n";
+    return s;
+  }
+  for (const DirectionCheck& d : directions) {
+    const ProjectionReport& r = d.report;
+    if (r.allMapped()) continue;
+    s += fmt::format(
+        "{} -> {}: {} target quadrature points were not mapped (farther than {:.4g} from the source); "
+        "{} target nodes affected",
+        r.source, r.target, r.unmappedQuadraturePoints, tolerance, r.unmappedTargetNodes);
+    if (!r.firstUnmappedNodes.empty()) s += fmt::format(", first: {}", fmt::join(r.firstUnmappedNodes, " "));
+    s += "\n";
+    for (const UnmappedPoint& p : r.firstUnmappedPoints)
+      s += fmt::format("    point ({:.6g}, {:.6g}, {:.6g}) at distance {:.4g}\n", p.x[0], p.x[1], p.x[2],
+                       p.distance);
+  }
+  return s;
+}
+
+}  // namespace fsi::coupling

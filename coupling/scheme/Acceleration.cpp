@@ -1,0 +1,143 @@
+#include "coupling/scheme/Acceleration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace fsi::coupling {
+
+ConstantRelaxation::ConstantRelaxation(double omega) : omega_(omega) {
+  if (!(omega > 0.0)) throw std::invalid_argument("ConstantRelaxation: omega must be > 0");
+}
+
+Eigen::VectorXd ConstantRelaxation::compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) {
+  return d + omega_ * (dTilde - d);
+}
+
+Aitken::Aitken(AitkenOptions options) : opt_(options), omega_(options.initialOmega) {
+  if (!(opt_.minOmega > 0.0 && opt_.minOmega <= opt_.maxOmega && opt_.initialOmega > 0.0))
+    throw std::invalid_argument("Aitken: need 0 < minOmega <= maxOmega and initialOmega > 0");
+}
+
+double Aitken::clampOmega(double w) const {
+  const double s = w < 0.0 ? -1.0 : 1.0;
+  return s * std::clamp(std::abs(w), opt_.minOmega, opt_.maxOmega);
+}
+
+Eigen::VectorXd Aitken::compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) {
+  Eigen::VectorXd r = dTilde - d;
+  if (iteration_ == 0) {
+    const double previous = omega_;
+    omega_ = firstWindow_ ? opt_.initialOmega
+                          : std::copysign(std::min(opt_.initialOmega, std::abs(previous)), previous);
+  } else {
+    const Eigen::VectorXd dr = r - previousResidual_;
+    const double den = dr.squaredNorm();
+    // A zero difference carries no curvature information: keep the last factor.
+    if (den > 0.0) omega_ = -omega_ * previousResidual_.dot(dr) / den;
+  }
+  omega_ = clampOmega(omega_);
+  previousResidual_ = r;
+  ++iteration_;
+  return d + omega_ * r;
+}
+
+void Aitken::onTimeWindowComplete() {
+  firstWindow_ = false;
+  iteration_ = 0;
+}
+
+IqnIls::IqnIls(IqnIlsOptions options) : opt_(options) {
+  if (!(opt_.initialOmega > 0.0) || opt_.reuseSteps < 0 || opt_.maxColumns < 1 ||
+      !(opt_.filterTolerance >= 0))
+    throw std::invalid_argument("IqnIls: invalid options");
+}
+
+std::string IqnIls::name() const {
+  return opt_.reuseSteps > 0 ? "iqn-ils(q=" + std::to_string(opt_.reuseSteps) + ")" : "iqn-ils";
+}
+
+Eigen::VectorXd IqnIls::relax(const Eigen::VectorXd& d, const Eigen::VectorXd& r) const {
+  return d + opt_.initialOmega * r;
+}
+
+Eigen::VectorXd IqnIls::compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) {
+  const Eigen::Index n = d.size();
+  Eigen::VectorXd r = dTilde - d;
+  if (iteration_ > 0) {
+    current_.v.push_front(r - previousResidual_);
+    current_.w.push_front(dTilde - previousOutput_);
+    if (int(current_.v.size()) > opt_.maxColumns) {
+      current_.v.pop_back();
+      current_.w.pop_back();
+    }
+  }
+  previousResidual_ = r;
+  previousOutput_ = dTilde;
+  const bool first = iteration_ == 0;
+  ++iteration_;
+  lastColumnsUsed_ = lastColumnsFiltered_ = 0;
+  if (first && (opt_.relaxFirstIteration || past_.empty())) return relax(d, r);
+
+  // Candidate columns newest first: this window, then the reused windows from the newest.
+  std::vector<const Eigen::VectorXd*> cv, cw;
+  auto take = [&](const Columns& c) {
+    for (std::size_t i = 0; i < c.v.size() && int(cv.size()) < opt_.maxColumns; ++i) {
+      if (c.v[i].size() != n) continue;  // the interface changed size: old columns are meaningless
+      cv.push_back(&c.v[i]);
+      cw.push_back(&c.w[i]);
+    }
+  };
+  take(current_);
+  for (const Columns& c : past_) take(c);
+
+  // Filter by modified Gram-Schmidt: an older column that adds (almost) nothing to the span of the newer
+  // ones would make R ill-conditioned and the coefficients c meaningless.
+  std::vector<Eigen::VectorXd> q;
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < cv.size(); ++i) {
+    const double norm0 = cv[i]->norm();
+    if (!(norm0 > 0.0)) continue;
+    Eigen::VectorXd v = *cv[i];
+    for (const Eigen::VectorXd& qj : q) v -= qj.dot(v) * qj;
+    const double norm1 = v.norm();
+    if (norm1 <= opt_.filterTolerance * norm0) continue;
+    q.push_back(v / norm1);
+    kept.push_back(i);
+  }
+  lastColumnsFiltered_ = int(cv.size() - kept.size());
+  if (kept.empty()) return relax(d, r);
+
+  Eigen::MatrixXd V(n, Eigen::Index(kept.size())), W(n, Eigen::Index(kept.size()));
+  for (std::size_t j = 0; j < kept.size(); ++j) {
+    V.col(Eigen::Index(j)) = *cv[kept[j]];
+    W.col(Eigen::Index(j)) = *cw[kept[j]];
+  }
+  lastColumnsUsed_ = int(kept.size());
+  const Eigen::VectorXd c = V.householderQr().solve(-r);
+  return dTilde + W * c;
+}
+
+void IqnIls::onTimeWindowComplete() {
+  if (opt_.reuseSteps > 0) {
+    past_.push_front(std::move(current_));
+    while (int(past_.size()) > opt_.reuseSteps) past_.pop_back();
+  }
+  current_ = Columns{};
+  iteration_ = 0;
+}
+
+std::unique_ptr<Acceleration> makeAcceleration(const AccelerationConfig& config) {
+  switch (config.kind) {
+    case AccelerationKind::Constant:
+      return std::make_unique<ConstantRelaxation>(config.omega);
+    case AccelerationKind::Aitken:
+      return std::make_unique<Aitken>(config.aitken);
+    case AccelerationKind::IqnIls:
+      return std::make_unique<IqnIls>(config.iqn);
+  }
+  throw std::invalid_argument("makeAcceleration: unknown kind");
+}
+
+}  // namespace fsi::coupling

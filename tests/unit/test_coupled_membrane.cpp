@@ -1,7 +1,7 @@
 // The real structural solver in a coupled loop with a reduced fluid: a drum membrane loaded by an external
 // pressure and by the added-mass pressure of a heavy fluid, p = p_ext − m_a·ẅ (m_a: added mass per area).
-// Independent reference: the same membrane run alone with its areal mass increased by m_a (the monolithic
-// equivalent of an added mass acting on the normal motion).
+// Independent reference: the same membrane run alone with its areal mass increased by m_a — the monolithic
+// equivalent of the added mass, exact because the nodes move only along the normal (in-plane dofs fixed).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,6 +25,7 @@ meshes:
     material: film
 constraints:
   - {nodes: sheet/boundary, fix: all}
+  - {nodes: sheet, fix: [x, y]}   # normal motion only: the added mass acts on it alone, in both models
 coupling: {interface: sheet}
 time: {end: 1.0}
 )";
@@ -131,23 +132,35 @@ double monolithic(double addedMass, double tEnd) {
 
 TEST(CoupledMembrane, HeavyFluidMakesStaggeredCouplingUnstableButImplicitCouplingMatchesMonolithic) {
   const double ma = 5.0;  // added mass per area 5 kg/m² against the film's 1 kg/m²: ratio 5
-  const double dt = 2e-3;
-  const int windows = 40;
+  const double dt = 0.25e-3, tEnd = 0.08;
+  const int windows = int(std::lround(tEnd / dt));
   const CoupledRun staggered = runCoupled(SchemeKind::Staggered, ma, dt, windows);
   EXPECT_FALSE(staggered.finite) << "a ratio of 5 is far above the staggered scheme's limit";
   const CoupledRun implicit = runCoupled(SchemeKind::Implicit, ma, dt, windows);
   ASSERT_TRUE(implicit.finite);
-  const double ref = monolithic(ma, dt * windows);
+  const double ref = monolithic(ma, tEnd);
   EXPECT_GT(std::abs(ref), 1e-3);
-  // Agreement within the fluid's time-discretisation error (second differences over dt).
-  EXPECT_NEAR(implicit.centre, ref, 0.05 * std::abs(ref));
+  EXPECT_NEAR(implicit.centre, ref, 0.02 * std::abs(ref));
   EXPECT_LT(implicit.meanIterations, 30.0);
   std::printf("coupled (IQN-ILS) centre %.6e m, monolithic %.6e m, %.1f iterations per window\n", implicit.centre,
               ref, implicit.meanIterations);
 }
 
+TEST(CoupledMembrane, ImplicitCouplingConvergesToTheMonolithicAnswerWithTheStep) {
+  const double ma = 5.0, tEnd = 0.08;
+  const double ref = monolithic(ma, tEnd);
+  const CoupledRun coarse = runCoupled(SchemeKind::Implicit, ma, 1e-3, 80);
+  const CoupledRun fine = runCoupled(SchemeKind::Implicit, ma, 0.25e-3, 320);
+  ASSERT_TRUE(coarse.finite && fine.finite);
+  const double eCoarse = std::abs(coarse.centre - ref), eFine = std::abs(fine.centre - ref);
+  std::printf("error vs monolithic: dt 1 ms %.3e, dt 0.25 ms %.3e (ratio %.2f)\n", eCoarse, eFine, eCoarse / eFine);
+  EXPECT_GT(eCoarse / eFine, 3.0);  // a step 4x smaller: at least first order towards the monolithic answer
+}
+
 TEST(CoupledMembrane, LightFluidIsStableStaggered) {
-  const CoupledRun staggered = runCoupled(SchemeKind::Staggered, 0.1, 2e-3, 40);
+  // μ = 0.1 is below the staggered limit (1/3 with the linear predictor, docs/COUPLING.md): the run stays
+  // bounded (an unstable run grows without bound within these 320 windows, as the μ = 5 case shows).
+  const CoupledRun staggered = runCoupled(SchemeKind::Staggered, 0.1, 0.25e-3, 320);
   ASSERT_TRUE(staggered.finite);
-  EXPECT_NEAR(staggered.centre, monolithic(0.1, 0.08), 0.05 * std::abs(monolithic(0.1, 0.08)));
+  EXPECT_LT(std::abs(staggered.centre), 4.0 * std::abs(monolithic(0.1, 0.08)));
 }

@@ -96,7 +96,8 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
                     const std::string& variant, int quadratureLevel) {
-  if (quadratureLevel < 1) throw fsi::InputError(fmt::format("--quadrature-level {}: must be >= 1", quadratureLevel));
+  if (quadratureLevel < 1)
+    throw fsi::InputError(fmt::format("--quadrature-level {}: must be >= 1", quadratureLevel));
   fsi::coupling::MapCheckOptions opt;
   if (variant == "consistent")
     opt.mass = fsi::coupling::MassMatrix::Consistent;
@@ -152,14 +153,16 @@ int main(int argc, char** argv) {
   fs::path mapJson;
   std::string mapVariant = "consistent";
   int mapLevel = 1;
-  mapCheck->add_option("source", mapSrc, "first mesh: FILE.msh, FILE.msh:GROUP or CASE_DIR:PATCH")->required();
+  mapCheck->add_option("source", mapSrc, "first mesh: FILE.msh, FILE.msh:GROUP or CASE_DIR:PATCH")
+      ->required();
   mapCheck->add_option("target", mapDst, "second mesh, same forms")->required();
   auto* mapTolOpt = mapCheck->add_option(
       "--tolerance,-t", mapTolerance,
       "absolute distance beyond which a point is unmapped (default 0.25 x the larger mean edge length)");
   mapCheck->add_option("--json", mapJson, "also write the results to this JSON file");
   mapCheck->add_option("--variant", mapVariant, "projection: consistent (default), lumped or dual");
-  mapCheck->add_option("--quadrature-level", mapLevel, "split each target triangle into level^2 for quadrature");
+  mapCheck->add_option("--quadrature-level", mapLevel,
+                       "split each target triangle into level^2 for quadrature");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -168,8 +171,8 @@ int main(int argc, char** argv) {
     if (*mapCheck) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0))
         throw fsi::InputError(fmt::format("--tolerance {}: must be a distance >= 0", mapTolerance));
-      return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson, mapVariant,
-                             mapLevel);
+      return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
+                             mapVariant, mapLevel);
     }
   } catch (const fsi::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

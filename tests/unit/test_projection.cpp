@@ -263,6 +263,24 @@ TEST(SurfaceSearch, ToleranceDecidesMapped) {
   EXPECT_NEAR(beside.point[1], 0.25, 1e-14);
 }
 
+TEST(SurfaceSearch, DegenerateTriangleUsesItsEdges) {
+  InterfaceMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
+  m.addFace({0, 1, 2});  // collinear: zero area
+  m.addFace({0, 2, 3});
+  const SurfaceSearch search(m);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 3.0);
+  for (int n = 0; n < 500; ++n) {
+    const Vec3 x{d(rng), d(rng) - 1.0, 0.5 * d(rng)};
+    Vec3 ref;
+    const double dist = bruteDistance(search.fan(), x, ref);
+    const SurfacePoint p = search.closest(x, n % 2);
+    ASSERT_NEAR(p.distance, dist, 1e-12);
+    ASSERT_TRUE(std::isfinite(p.bary[0]) && std::isfinite(p.bary[1]) && std::isfinite(p.bary[2]));
+  }
+}
+
 TEST(SurfaceSearch, RejectsBadFaces) {
   InterfaceMesh m;
   m.name = "bad";

@@ -15,9 +15,11 @@ StructureParticipant::StructureParticipant(const std::filesystem::path& sceneFil
 
 StructureParticipant::StructureParticipant(Scene scene) : scene_(std::move(scene)) {
   if (!scene_.interfacePressure)
-    throw InputError(scene_.file.string() + ": a coupled structure needs `coupling: {interface: <triangles>}`");
+    throw InputError(scene_.file.string() +
+                     ": a coupled structure needs `coupling: {interface: <triangles>}`");
   if (scene_.solver.type != structure::SolverControl::Type::ExplicitDynamics)
-    throw InputError(scene_.file.string() + ": a coupled structure runs explicit dynamics (no `solver` section)");
+    throw InputError(scene_.file.string() +
+                     ": a coupled structure runs explicit dynamics (no `solver` section)");
   cd_ = std::make_unique<structure::CentralDifference>(*scene_.model, scene_.effectList(), scene_.constraints,
                                                        scene_.time.integrator);
   // Interface mesh: the pressure effect's nodes and triangles, in reference coordinates.
@@ -102,7 +104,11 @@ Eigen::VectorXd StructureParticipant::solve(double t, double dt, const Eigen::Ve
   return Eigen::Map<const Eigen::VectorXd>(u.data(), Eigen::Index(u.size()));
 }
 
-void StructureParticipant::saveCheckpoint() { checkpoint_ = cd_->checkpoint(); }
-void StructureParticipant::restoreCheckpoint() { cd_->restore(checkpoint_); }
+void StructureParticipant::saveCheckpoint() {
+  checkpoint_ = cd_->checkpoint();
+}
+void StructureParticipant::restoreCheckpoint() {
+  cd_->restore(checkpoint_);
+}
 
 }  // namespace fsi::coupling

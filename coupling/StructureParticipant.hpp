@@ -5,7 +5,8 @@
 // displacements and velocities. Checkpoints let an implicit coupling repeat a step exactly.
 //
 // Call sequence per fluid step [t, t + Δt]:
-//   setPressure(p(t), p(t+Δt));  advance(Δt);  interfaceDisplacement();   // (+ restoreCheckpoint() to iterate)
+//   setPressure(p(t), p(t+Δt));  advance(Δt);  interfaceDisplacement();   // (+ restoreCheckpoint() to
+//   iterate)
 
 #include <filesystem>
 #include <string>
@@ -21,7 +22,8 @@ namespace fsi::coupling {
 class StructureParticipant final : public StructureSolver {
  public:
   explicit StructureParticipant(structure::Scene scene);
-  StructureParticipant(const std::filesystem::path& sceneFile, const std::vector<std::string>& overrides = {});
+  StructureParticipant(const std::filesystem::path& sceneFile,
+                       const std::vector<std::string>& overrides = {});
 
   /// Interface in the reference configuration: its points are the interface nodes, in the order of every
   /// per-node array below; its faces are the interface triangles.

@@ -13,7 +13,8 @@ InterfacePressure::InterfacePressure(std::vector<int> triangleConn, std::vector<
   conn_.reserve(triangleConn.size());
   for (int n : triangleConn) {
     const auto it = local.find(n);
-    if (it == local.end()) throw std::invalid_argument("interface triangle uses a node outside the interface");
+    if (it == local.end())
+      throw std::invalid_argument("interface triangle uses a node outside the interface");
     conn_.push_back(it->second);
   }
   p0_.assign(nodes_.size(), 0.0);
@@ -34,8 +35,9 @@ void InterfacePressure::setWindow(double t0, double t1, const std::vector<double
 
 void InterfacePressure::addForces(ForceContext& ctx) const {
   const double s = rule_ == WindowLoad::Mean ? 0.5
-                   : rule_ == WindowLoad::End || !(t1_ > t0_) ? 1.0
-                                                               : std::clamp((ctx.time - t0_) / (t1_ - t0_), 0.0, 1.0);
+                   : rule_ == WindowLoad::End || !(t1_ > t0_)
+                       ? 1.0
+                       : std::clamp((ctx.time - t0_) / (t1_ - t0_), 0.0, 1.0);
   const std::size_t n = nodes_.size();
   for (std::size_t i = 0; i < n; ++i) p_[i] = ctx.loadFactor * (p0_[i] + s * (p1_[i] - p0_[i]));
   const double* __restrict x = ctx.x;

@@ -36,8 +36,8 @@ class InterfacePressure final : public Effect {
   }
 
  private:
-  std::vector<int> conn_;     ///< triangles as local interface node indices
-  std::vector<int> nodes_;    ///< interface node -> model node
+  std::vector<int> conn_;   ///< triangles as local interface node indices
+  std::vector<int> nodes_;  ///< interface node -> model node
   std::vector<double> p0_, p1_;
   double t0_ = 0, t1_ = 1;
   WindowLoad rule_ = WindowLoad::Mean;

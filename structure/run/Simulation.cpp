@@ -427,6 +427,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   bool nonFinite = false;
   const auto wall0 = Clock::now();
   auto lastPrint = wall0;
+  bool printNow = false;
   gInterrupted = 0;
 
   while (true) {
@@ -470,6 +471,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       probeRows[0].push_back(cd.time());
       for (std::size_t i = 0; i < probeNames.size(); ++i) probeRows[i + 1].push_back(probes[probeNames[i]]);
       nextOutput += scene.output.interval;
+      printNow = true;  // a progress line per output frame too (throttled below), so short runs show progress
     }
     if (cd.time() >= tEnd * (1 - 1e-12)) {
       result.reason = tc.untilStatic ? StopReason::NotConverged : StopReason::EndTime;
@@ -479,9 +481,10 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       result.reason = StopReason::Interrupted;
       break;
     }
-    if (!opt.quiet && (cd.steps() & 255) == 0) {
+    if (!opt.quiet && (printNow || (cd.steps() & 255) == 0)) {
       const auto now = Clock::now();
-      if (std::chrono::duration<double>(now - lastPrint).count() >= opt.progressSeconds) {
+      const double since = std::chrono::duration<double>(now - lastPrint).count();
+      if (since >= opt.progressSeconds || (printNow && since >= 0.02 * opt.progressSeconds)) {
         lastPrint = now;
         const double wall = std::chrono::duration<double>(now - wall0).count();
         const EnergyLedger& E = cd.energy();
@@ -494,6 +497,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
             eta, tc.untilStatic ? " (at most)" : "");
         std::fflush(stdout);
       }
+      printNow = false;
     }
   }
   const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();

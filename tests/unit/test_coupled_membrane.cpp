@@ -142,8 +142,8 @@ TEST(CoupledMembrane, HeavyFluidMakesStaggeredCouplingUnstableButImplicitCouplin
   EXPECT_GT(std::abs(ref), 1e-3);
   EXPECT_NEAR(implicit.centre, ref, 0.02 * std::abs(ref));
   EXPECT_LT(implicit.meanIterations, 30.0);
-  std::printf("coupled (IQN-ILS) centre %.6e m, monolithic %.6e m, %.1f iterations per window\n", implicit.centre,
-              ref, implicit.meanIterations);
+  std::printf("coupled (IQN-ILS) centre %.6e m, monolithic %.6e m, %.1f iterations per window\n",
+              implicit.centre, ref, implicit.meanIterations);
 }
 
 TEST(CoupledMembrane, ImplicitCouplingConvergesToTheMonolithicAnswerWithTheStep) {
@@ -153,7 +153,8 @@ TEST(CoupledMembrane, ImplicitCouplingConvergesToTheMonolithicAnswerWithTheStep)
   const CoupledRun fine = runCoupled(SchemeKind::Implicit, ma, 0.25e-3, 320);
   ASSERT_TRUE(coarse.finite && fine.finite);
   const double eCoarse = std::abs(coarse.centre - ref), eFine = std::abs(fine.centre - ref);
-  std::printf("error vs monolithic: dt 1 ms %.3e, dt 0.25 ms %.3e (ratio %.2f)\n", eCoarse, eFine, eCoarse / eFine);
+  std::printf("error vs monolithic: dt 1 ms %.3e, dt 0.25 ms %.3e (ratio %.2f)\n", eCoarse, eFine,
+              eCoarse / eFine);
   EXPECT_GT(eCoarse / eFine, 3.0);  // a step 4x smaller: at least first order towards the monolithic answer
 }
 

@@ -26,7 +26,9 @@ coupling: {interface: sheet}
 time: {end: 1.0}
 )";
 
-StructureParticipant drum() { return StructureParticipant(structure::loadSceneFromString(kDrum, "drum.yaml")); }
+StructureParticipant drum() {
+  return StructureParticipant(structure::loadSceneFromString(kDrum, "drum.yaml"));
+}
 
 }  // namespace
 

@@ -49,6 +49,8 @@ int StructureParticipant::subcyclesFor(double dt) const {
 void StructureParticipant::setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd) {
   pStart_ = pStart;
   pEnd_ = pEnd;
+  // Effective now (interfaceForce reflects it); advance() re-times the window.
+  scene_.interfacePressure->setWindow(time(), time(), pStart_, pEnd_, scene_.interfaceLoadRule);
 }
 
 void StructureParticipant::advance(double dt) {

@@ -18,8 +18,10 @@ for p in "${packages[@]}"; do
   fi
 done
 
+root="$(cd "$(dirname "$0")/.." && pwd)"
 if [ ${#missing[@]} -eq 0 ]; then
   echo "[install-deps] all ${#packages[@]} packages present"
+  "$root/scripts/install-openfoam.sh"
   exit 0
 fi
 
@@ -29,4 +31,5 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+"$root/scripts/install-openfoam.sh"
 echo "[install-deps] done"

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "TestScenes.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
 #include "structure/run/Simulation.hpp"
@@ -17,18 +18,11 @@ using namespace fsi::coupling;
 
 namespace {
 
-const char* kDrum = R"(materials:
-  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}
-meshes:
-  sheet:
-    generator: {type: rectangle, size: [1, 1], divisions: [8, 8], pattern: cross}
-    material: film
-constraints:
-  - {nodes: sheet/boundary, fix: all}
-  - {nodes: sheet, fix: [x, y]}   # normal motion only: the added mass acts on it alone, in both models
+const std::string kDrum =
+    test::drumScene(R"(  - {nodes: sheet, fix: [x, y]}   # normal motion only: the added mass acts on it alone
 coupling: {interface: sheet}
 time: {end: 1.0}
-)";
+)");
 
 constexpr double kPext = 200.0;  // Pa
 

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "TestScenes.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/mapping/L2Projection.hpp"
 #include "structure/run/Simulation.hpp"
@@ -13,19 +14,11 @@ using namespace fsi::coupling;
 
 namespace {
 
-const char* kDrum = R"(materials:
-  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}
-meshes:
-  sheet:
-    generator: {type: rectangle, size: [1, 1], divisions: [8, 8], pattern: cross}
-    material: film
-constraints:
-  - {nodes: sheet/boundary, fix: all}
-effects:
+const std::string kDrum = test::drumScene(R"(effects:
   mass_damping: {alpha: 50}
 coupling: {interface: sheet}
 time: {end: 1.0}
-)";
+)");
 
 StructureParticipant drum() {
   return StructureParticipant(structure::loadSceneFromString(kDrum, "drum.yaml"));

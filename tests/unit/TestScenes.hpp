@@ -1,0 +1,20 @@
+#pragma once
+// Scene text shared by several tests: a 1 m square film (8x8 cross-pattern squares) clamped on its edges.
+
+#include <string>
+
+namespace fsi::test {
+
+inline std::string drumScene(const std::string& extra) {
+  return std::string(R"(materials:
+  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}
+meshes:
+  sheet:
+    generator: {type: rectangle, size: [1, 1], divisions: [8, 8], pattern: cross}
+    material: film
+constraints:
+  - {nodes: sheet/boundary, fix: all}
+)") + extra;
+}
+
+}  // namespace fsi::test

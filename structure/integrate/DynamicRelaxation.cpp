@@ -49,140 +49,146 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
   for (int inc = 1; inc <= s_.increments; ++inc) {
     const double lf = double(inc) / s_.increments;
     const std::vector<double> xStart = N.x;
-  restart:
-    for (const PrescribedMotion& p : constraints_.prescribed)
-      N.x[3 * p.node + p.component] = N.X[3 * p.node + p.component] + lf * p.amplitude * p.fn(s_.loadTime);
-    mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
-    // A node with no stiffness at all (e.g. only slack cables) still needs a mass.
-    double mmax = 0;
-    for (double m : mass_) mmax = std::max(mmax, m);
-    for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
-    std::fill(N.v.begin(), N.v.end(), 0.0);
-    forces(lf);
-    bool fresh = true;  // next velocity update is a half step (start or restart)
-    double kePrev = 0, c = 0, res0 = -1;
     bool converged = false;
-    while (true) {
-      // Static residual on free dofs, reactions on constrained ones.
-      double res = 0, reac = 0, fmax = 0, ke = 0;
-      for (int i = 0; i < N.count; ++i)
-        for (int k = 0; k < 3; ++k) {
-          const int d = 3 * i + k;
-          const double R = N.fext[d] - N.fint[d];
-          fmax = std::max(fmax, std::abs(N.fext[d]));
-          if (free_[d] != 0.0) {
-            res = std::max(res, std::abs(R));
-            ke += 0.5 * mass_[i] * N.v[d] * N.v[d];
-          } else {
-            reac = std::max(reac, std::abs(R));
-          }
-        }
-      const double scale = reac > 0 ? reac : (fmax > 0 ? fmax : 1.0);
-      r.residualRatio = res / scale;
-      r.energyRatio = strain_ > 0 ? ke / strain_ : (ke > 0 ? std::numeric_limits<double>::infinity() : 0.0);
-      r.history.push_back({r.iterations, r.residualRatio, r.energyRatio, ke, strain_});
-      if (res0 < 0) res0 = res;
-      // Divergence (masses too light for the stiffness the structure develops): restart the increment
-      // with 1.5x the masses rather than fail; give up only after the masses grew 25-fold.
-      if (!std::isfinite(r.residualRatio) || !std::isfinite(strain_) || res > 1e4 * res0) {
-        if (s_.autoMass && lambda < 25.0 * r.lambda) {
-          lambda *= 1.5;
-          ++r.restarts;
-          N.x = xStart;
-          std::fill(N.v.begin(), N.v.end(), 0.0);
-          std::fill(strikes.begin(), strikes.end(), 0);
-          goto restart;
-        }
-        r.diverged = true;
-        r.message = fmt::format("diverged at iteration {} (residual {:.3g} from {:.3g}); raise solver.lambda",
-                                r.iterations, res, res0);
-        return r;
-      }
-      if (std::max(r.residualRatio, r.energyRatio) <= s_.tolerance) {
-        converged = true;
-        break;
-      }
-      if (r.iterations >= s_.maxIterations) break;
-      if (interrupted && interrupted()) {
-        r.message = "interrupted";
-        return r;
-      }
-      ++r.iterations;
-
-      const double h = fresh ? 0.5 : 1.0;
-      if (kinetic) {
-        double keNew = 0;
-        for (int d = 0; d < nd; ++d) {
-          const double vn = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
-          keNew += 0.5 * mass_[d / 3] * vn * vn;
-        }
-        if (!fresh && keNew < kePrev) {
-          // Kinetic-energy peak passed: zero the velocities (after stepping back to the peak).
-          ++r.kineticResets;
-          if (s_.backstep)
-            for (int d = 0; d < nd; ++d) N.x[d] -= 0.5 * N.v[d];
-          std::fill(N.v.begin(), N.v.end(), 0.0);
-          fresh = true;
-          kePrev = 0;
-          if (s_.mass == FictitiousMassRule::StressBound || s_.updateMasses) {
-            mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
-            for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
-          }
-          if (s_.backstep) forces(lf);
-          continue;
-        }
-        kePrev = keNew;
-      }
-      const double cv = kinetic ? 1.0 : (2.0 - c) / (2.0 + c);
-      const double cr = kinetic ? h : (fresh ? 0.5 : 2.0 / (2.0 + c));
-      for (int d = 0; d < nd; ++d) {
-        const double R = N.fext[d] - N.fint[d];
-        Rprev[d] = R;
-        N.v[d] = (cv * N.v[d] + cr * R / mass_[d / 3]) * free_[d];
-        N.x[d] += N.v[d];
-      }
-      for (const PlaneSlider& sl : constraints_.sliders) {
-        double* vv = &N.v[3 * sl.node];
-        double* xx = &N.x[3 * sl.node];
-        const double vn = vv[0] * sl.normal[0] + vv[1] * sl.normal[1] + vv[2] * sl.normal[2];
-        for (int k = 0; k < 3; ++k) vv[k] -= vn * sl.normal[k], xx[k] -= vn * sl.normal[k];
-      }
-      fresh = false;
+    // An attempt relaxes the increment from its start; a divergence ends it and starts another one with
+    // heavier masses.
+    for (bool restart = true; restart;) {
+      restart = false;
+      for (const PrescribedMotion& p : constraints_.prescribed)
+        N.x[3 * p.node + p.component] = N.X[3 * p.node + p.component] + lf * p.amplitude * p.fn(s_.loadTime);
+      mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
+      // A node with no stiffness at all (e.g. only slack cables) still needs a mass.
+      double mmax = 0;
+      for (double m : mass_) mmax = std::max(mmax, m);
+      for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
+      std::fill(N.v.begin(), N.v.end(), 0.0);
       forces(lf);
+      bool fresh = true;  // next velocity update is a half step (start or restart)
+      double kePrev = 0, c = 0, res0 = -1;
+      while (true) {
+        // Static residual on free dofs, reactions on constrained ones.
+        double res = 0, reac = 0, fmax = 0, ke = 0;
+        for (int i = 0; i < N.count; ++i)
+          for (int k = 0; k < 3; ++k) {
+            const int d = 3 * i + k;
+            const double R = N.fext[d] - N.fint[d];
+            fmax = std::max(fmax, std::abs(N.fext[d]));
+            if (free_[d] != 0.0) {
+              res = std::max(res, std::abs(R));
+              ke += 0.5 * mass_[i] * N.v[d] * N.v[d];
+            } else {
+              reac = std::max(reac, std::abs(R));
+            }
+          }
+        const double scale = reac > 0 ? reac : (fmax > 0 ? fmax : 1.0);
+        r.residualRatio = res / scale;
+        r.energyRatio = strain_ > 0 ? ke / strain_ : (ke > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+        r.history.push_back({r.iterations, r.residualRatio, r.energyRatio, ke, strain_});
+        if (res0 < 0) res0 = res;
+        // Divergence (masses too light for the stiffness the structure develops): restart the increment
+        // with 1.5x the masses rather than fail; give up only after the masses grew 25-fold.
+        if (!std::isfinite(r.residualRatio) || !std::isfinite(strain_) || res > 1e4 * res0) {
+          if (s_.autoMass && lambda < 25.0 * r.lambda) {
+            lambda *= 1.5;
+            ++r.restarts;
+            N.x = xStart;
+            std::fill(N.v.begin(), N.v.end(), 0.0);
+            std::fill(strikes.begin(), strikes.end(), 0);
+            restart = true;
+            break;
+          }
+          r.diverged = true;
+          r.message =
+              fmt::format("diverged at iteration {} (residual {:.3g} from {:.3g}); raise solver.lambda",
+                          r.iterations, res, res0);
+          return r;
+        }
+        if (std::max(r.residualRatio, r.energyRatio) <= s_.tolerance) {
+          converged = true;
+          break;
+        }
+        if (r.iterations >= s_.maxIterations) break;
+        if (interrupted && interrupted()) {
+          r.message = "interrupted";
+          return r;
+        }
+        ++r.iterations;
 
-      // Apparent-frequency test (Underwood) and, for viscous damping, the Rayleigh-quotient ω0².
-      double dxMax = 0;
-      for (int d = 0; d < nd; ++d) dxMax = std::max(dxMax, std::abs(N.v[d]));
-      double num = 0, den = 0;
-      for (int i = 0; i < N.count; ++i) {
-        double dR2 = 0, dx2 = 0;
-        for (int k = 0; k < 3; ++k) {
-          const int d = 3 * i + k;
-          if (free_[d] == 0.0) continue;
-          const double dR = (N.fext[d] - N.fint[d]) - Rprev[d];
-          dR2 += dR * dR;
-          dx2 += N.v[d] * N.v[d];
-          if (!kinetic && std::abs(N.v[d]) > 1e-12 * dxMax) {
-            const double u = N.x[d] - N.X[d];
-            num += u * u * (-dR / N.v[d]);
-            den += u * u * mass_[i];
+        const double h = fresh ? 0.5 : 1.0;
+        if (kinetic) {
+          double keNew = 0;
+          for (int d = 0; d < nd; ++d) {
+            const double vn = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
+            keNew += 0.5 * mass_[d / 3] * vn * vn;
+          }
+          if (!fresh && keNew < kePrev) {
+            // Kinetic-energy peak passed: zero the velocities (after stepping back to the peak).
+            ++r.kineticResets;
+            if (s_.backstep)
+              for (int d = 0; d < nd; ++d) N.x[d] -= 0.5 * N.v[d];
+            std::fill(N.v.begin(), N.v.end(), 0.0);
+            fresh = true;
+            kePrev = 0;
+            if (s_.mass == FictitiousMassRule::StressBound || s_.updateMasses) {
+              mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
+              for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
+            }
+            if (s_.backstep) forces(lf);
+            continue;
+          }
+          kePrev = keNew;
+        }
+        const double cv = kinetic ? 1.0 : (2.0 - c) / (2.0 + c);
+        const double cr = kinetic ? h : (fresh ? 0.5 : 2.0 / (2.0 + c));
+        for (int d = 0; d < nd; ++d) {
+          const double R = N.fext[d] - N.fint[d];
+          Rprev[d] = R;
+          N.v[d] = (cv * N.v[d] + cr * R / mass_[d / 3]) * free_[d];
+          N.x[d] += N.v[d];
+        }
+        for (const PlaneSlider& sl : constraints_.sliders) {
+          double* vv = &N.v[3 * sl.node];
+          double* xx = &N.x[3 * sl.node];
+          const double vn = vv[0] * sl.normal[0] + vv[1] * sl.normal[1] + vv[2] * sl.normal[2];
+          for (int k = 0; k < 3; ++k) vv[k] -= vn * sl.normal[k], xx[k] -= vn * sl.normal[k];
+        }
+        fresh = false;
+        forces(lf);
+
+        // Apparent-frequency test (Underwood) and, for viscous damping, the Rayleigh-quotient ω0².
+        double dxMax = 0;
+        for (int d = 0; d < nd; ++d) dxMax = std::max(dxMax, std::abs(N.v[d]));
+        double num = 0, den = 0;
+        for (int i = 0; i < N.count; ++i) {
+          double dR2 = 0, dx2 = 0;
+          for (int k = 0; k < 3; ++k) {
+            const int d = 3 * i + k;
+            if (free_[d] == 0.0) continue;
+            const double dR = (N.fext[d] - N.fint[d]) - Rprev[d];
+            dR2 += dR * dR;
+            dx2 += N.v[d] * N.v[d];
+            if (!kinetic && std::abs(N.v[d]) > 1e-12 * dxMax) {
+              const double u = N.x[d] - N.X[d];
+              num += u * u * (-dR / N.v[d]);
+              den += u * u * mass_[i];
+            }
+          }
+          if (s_.autoMass && dx2 > 1e-12 * dxMax * dxMax) {
+            const double ratio = std::sqrt(dR2 / dx2) / (4.0 * mass_[i]);
+            strikes[i] = ratio > 1.0 ? static_cast<unsigned char>(std::min(strikes[i] + 1, 255)) : 0;
+            if (strikes[i] >= 3) {
+              mass_[i] *= 1.2 * ratio;
+              strikes[i] = 0;
+              ++r.massIncreases;
+            }
           }
         }
-        if (s_.autoMass && dx2 > 1e-12 * dxMax * dxMax) {
-          const double ratio = std::sqrt(dR2 / dx2) / (4.0 * mass_[i]);
-          strikes[i] = ratio > 1.0 ? static_cast<unsigned char>(std::min(strikes[i] + 1, 255)) : 0;
-          if (strikes[i] >= 3) {
-            mass_[i] *= 1.2 * ratio;
-            strikes[i] = 0;
-            ++r.massIncreases;
-          }
+        if (!kinetic && den > 0) {
+          const double w2 = std::max(0.0, num / den);
+          c = s_.coefficient == RelaxationSettings::Coefficient::Underwood
+                  ? 2.0 * std::sqrt(w2)
+                  : std::sqrt(std::max(0.0, 4 * w2 - w2 * w2));
         }
-      }
-      if (!kinetic && den > 0) {
-        const double w2 = std::max(0.0, num / den);
-        c = s_.coefficient == RelaxationSettings::Coefficient::Underwood
-                ? 2.0 * std::sqrt(w2)
-                : std::sqrt(std::max(0.0, 4 * w2 - w2 * w2));
       }
     }
     if (!converged) {

@@ -1,10 +1,8 @@
-#include "fsiCouplingFunctionObject.H"
-
 #include "addToRunTimeSelectionTable.H"
+#include "coupling/StructureParticipant.hpp"
+#include "fsiCouplingFunctionObject.H"
 #include "surfaceFields.H"
 #include "volFields.H"
-
-#include "coupling/StructureParticipant.hpp"
 
 namespace Foam {
 namespace functionObjects {
@@ -70,7 +68,9 @@ bool fsiCoupling::execute() {
   return true;
 }
 
-bool fsiCoupling::write() { return true; }
+bool fsiCoupling::write() {
+  return true;
+}
 
 }  // namespace functionObjects
 }  // namespace Foam

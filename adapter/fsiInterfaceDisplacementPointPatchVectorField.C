@@ -1,0 +1,40 @@
+#include "addToRunTimeSelectionTable.H"
+#include "fsiInterfaceDisplacementPointPatchVectorField.H"
+#include "pointPatchFields.H"
+
+namespace Foam {
+
+fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
+    const pointPatch& p, const DimensionedField<vector, pointMesh>& iF)
+    : fixedValuePointPatchField<vector>(p, iF) {}
+
+fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
+    const pointPatch& p, const DimensionedField<vector, pointMesh>& iF, const dictionary& dict)
+    : fixedValuePointPatchField<vector>(p, iF, dict) {}
+
+fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
+    const fsiInterfaceDisplacementPointPatchVectorField& ptf, const pointPatch& p,
+    const DimensionedField<vector, pointMesh>& iF, const pointPatchFieldMapper& mapper)
+    : fixedValuePointPatchField<vector>(ptf, p, iF, mapper) {}
+
+fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
+    const fsiInterfaceDisplacementPointPatchVectorField& ptf, const DimensionedField<vector, pointMesh>& iF)
+    : fixedValuePointPatchField<vector>(ptf, iF), next_(ptf.next_), hasNext_(ptf.hasNext_) {}
+
+void fsiInterfaceDisplacementPointPatchVectorField::setDisplacement(const vectorField& d) {
+  if (d.size() != this->size())
+    FatalErrorInFunction << "fsiInterfaceDisplacement on patch " << this->patch().name() << ": " << d.size()
+                         << " values for " << this->size() << " points" << exit(FatalError);
+  next_ = d;
+  hasNext_ = true;
+}
+
+void fsiInterfaceDisplacementPointPatchVectorField::updateCoeffs() {
+  if (this->updated()) return;
+  if (hasNext_) this->operator==(next_);
+  fixedValuePointPatchField<vector>::updateCoeffs();
+}
+
+makePointPatchTypeField(pointPatchVectorField, fsiInterfaceDisplacementPointPatchVectorField);
+
+}  // namespace Foam

@@ -1,25 +1,29 @@
 #include "addToRunTimeSelectionTable.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
+#include "Time.H"
 #include "pointPatchFields.H"
 
 namespace Foam {
 
 fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
     const pointPatch& p, const DimensionedField<vector, pointMesh>& iF)
-    : fixedValuePointPatchField<vector>(p, iF) {}
+    : fixedValuePointPatchField<vector>(p, iF), startIndex_(iF.time().timeIndex()) {}
 
 fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
     const pointPatch& p, const DimensionedField<vector, pointMesh>& iF, const dictionary& dict)
-    : fixedValuePointPatchField<vector>(p, iF, dict) {}
+    : fixedValuePointPatchField<vector>(p, iF, dict), startIndex_(iF.time().timeIndex()) {}
 
 fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
     const fsiInterfaceDisplacementPointPatchVectorField& ptf, const pointPatch& p,
     const DimensionedField<vector, pointMesh>& iF, const pointPatchFieldMapper& mapper)
-    : fixedValuePointPatchField<vector>(ptf, p, iF, mapper) {}
+    : fixedValuePointPatchField<vector>(ptf, p, iF, mapper), startIndex_(iF.time().timeIndex()) {}
 
 fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
     const fsiInterfaceDisplacementPointPatchVectorField& ptf, const DimensionedField<vector, pointMesh>& iF)
-    : fixedValuePointPatchField<vector>(ptf, iF), next_(ptf.next_), hasNext_(ptf.hasNext_) {}
+    : fixedValuePointPatchField<vector>(ptf, iF),
+      next_(ptf.next_),
+      hasNext_(ptf.hasNext_),
+      startIndex_(ptf.startIndex_) {}
 
 void fsiInterfaceDisplacementPointPatchVectorField::setDisplacement(const vectorField& d) {
   if (d.size() != this->size())
@@ -31,7 +35,13 @@ void fsiInterfaceDisplacementPointPatchVectorField::setDisplacement(const vector
 
 void fsiInterfaceDisplacementPointPatchVectorField::updateCoeffs() {
   if (this->updated()) return;
-  if (hasNext_) this->operator==(next_);
+  if (hasNext_)
+    this->operator==(next_);
+  else if (this->db().time().timeIndex() > startIndex_)
+    FatalErrorInFunction << "fsiInterfaceDisplacement on patch " << this->patch().name()
+                         << ": the mesh moves but no fsiCoupling function object has set the interface "
+                         << "displacement; the coupling did not start (check the fsiCoupling entry in "
+                         << "system/controlDict `functions`)" << exit(FatalError);
   fixedValuePointPatchField<vector>::updateCoeffs();
 }
 

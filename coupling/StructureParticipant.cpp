@@ -3,6 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::coupling {
@@ -34,8 +35,8 @@ StructureParticipant::StructureParticipant(Scene scene) : scene_(std::move(scene
   const auto& tris = scene_.interfacePressure->triangles();
   for (std::size_t e = 0; e + 2 < tris.size(); e += 3)
     mesh_.addFace({local.at(tris[e]), local.at(tris[e + 1]), local.at(tris[e + 2])});
-  pStart_.assign(nodes.size(), 0.0);
-  pEnd_.assign(nodes.size(), 0.0);
+  loadStart_.assign(nodes.size(), 0.0);
+  loadEnd_.assign(nodes.size(), 0.0);
   cd_->evaluateForces(false);
   saveCheckpoint();
 }
@@ -43,19 +44,32 @@ StructureParticipant::StructureParticipant(Scene scene) : scene_(std::move(scene
 int StructureParticipant::subcyclesFor(double dt) const {
   const double stable = scene_.time.integrator.fixedDt > 0 ? scene_.time.integrator.fixedDt
                                                            : scene_.time.integrator.safety * cd_->stableDt();
-  return std::max(1, int(std::ceil(dt / stable - 1e-9)));
+  return std::max({1, minSubcycles_, int(std::ceil(dt / stable - 1e-9))});
 }
 
 void StructureParticipant::setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd) {
-  pStart_ = pStart;
-  pEnd_ = pEnd;
   // Effective now (interfaceForce reflects it); advance() re-times the window.
-  scene_.interfacePressure->setWindow(time(), time(), pStart_, pEnd_, scene_.interfaceLoadRule);
+  scene_.interfacePressure->setWindow(time(), time(), pStart, pEnd, scene_.interfaceLoadRule);
+  loadStart_ = pStart;
+  loadEnd_ = pEnd;
+  forces_ = false;
+}
+
+void StructureParticipant::setForces(const std::vector<double>& fStart, const std::vector<double>& fEnd) {
+  scene_.interfacePressure->setForceWindow(time(), time(), fStart, fEnd, scene_.interfaceLoadRule);
+  loadStart_ = fStart;
+  loadEnd_ = fEnd;
+  forces_ = true;
 }
 
 void StructureParticipant::advance(double dt) {
   const double t0 = cd_->time(), t1 = t0 + dt;
-  scene_.interfacePressure->setWindow(t0, t1, pStart_, pEnd_, scene_.interfaceLoadRule);
+  if (forces_)
+    scene_.interfacePressure->setForceWindow(t0, t1, loadStart_, loadEnd_, scene_.interfaceLoadRule);
+  else
+    scene_.interfacePressure->setWindow(t0, t1, loadStart_, loadEnd_, scene_.interfaceLoadRule);
+  const double scenarioMaxDt = scene_.time.integrator.maxDt;
+  cd_->setMaxDt(minSubcycles_ > 1 ? std::min(scenarioMaxDt, dt / minSubcycles_ * (1 + 1e-12)) : scenarioMaxDt);
   while (cd_->time() < t1 * (1 - 1e-14) - 1e-300) {
     if (!cd_->step(t1, false))
       throw std::runtime_error("structure became unstable at t = " + std::to_string(cd_->time()) + " s");
@@ -99,8 +113,12 @@ Eigen::VectorXd StructureParticipant::solve(double t, double dt, const Eigen::Ve
   if (std::abs(t - time()) > 1e-9 * std::max(dt, 1e-300))
     throw std::logic_error("StructureParticipant::solve: window starts at " + std::to_string(t) +
                            " s but the structure is at " + std::to_string(time()) + " s");
-  setPressure(std::vector<double>(loadsStart.data(), loadsStart.data() + loadsStart.size()),
-              std::vector<double>(loadsEnd.data(), loadsEnd.data() + loadsEnd.size()));
+  const std::vector<double> a(loadsStart.data(), loadsStart.data() + loadsStart.size());
+  const std::vector<double> b(loadsEnd.data(), loadsEnd.data() + loadsEnd.size());
+  if (a.size() == 3 * std::size_t(numInterfaceNodes()) && numInterfaceNodes() > 0)
+    setForces(a, b);
+  else
+    setPressure(a, b);
   advance(dt);
   const std::vector<double> u = interfaceDisplacement();
   return Eigen::Map<const Eigen::VectorXd>(u.data(), Eigen::Index(u.size()));
@@ -111,6 +129,39 @@ void StructureParticipant::saveCheckpoint() {
 }
 void StructureParticipant::restoreCheckpoint() {
   cd_->restore(checkpoint_);
+}
+
+void StructureParticipant::writeState(const std::filesystem::path& file,
+                                      const std::map<std::string, std::vector<double>>& arrays) const {
+  structure::StateSnapshot s;
+  s.arrays = arrays;
+  s.time = cd_->time();
+  s.step = cd_->steps();
+  s.dt = cd_->lastDt();
+  s.x = scene_.model->nodes.x;
+  s.v = scene_.model->nodes.v;
+  structure::writeState(file, s);
+}
+
+std::map<std::string, std::vector<double>> StructureParticipant::readState(const std::filesystem::path& file) {
+  const structure::StateSnapshot s = structure::readState(file);
+  const std::size_t n = scene_.model->nodes.x.size();
+  if (s.x.size() != n || s.v.size() != n)
+    throw InputError(file.string() + ": restart state has " + std::to_string(s.x.size() / 3) +
+                     " nodes but the scene " + scene_.file.string() + " has " + std::to_string(n / 3));
+  cd_->restore(s.x, s.v, s.time, s.dt, s.step);
+  cd_->evaluateForces(false);
+  saveCheckpoint();
+  return s.arrays;
+}
+
+void StructureParticipant::openResults(const std::filesystem::path& h5File) {
+  frames_ = std::make_unique<structure::SceneFrames>(scene_, h5File);
+}
+
+void StructureParticipant::writeResults() {
+  if (!frames_) throw std::logic_error("StructureParticipant::writeResults before openResults");
+  frames_->write(cd_->time(), cd_->steps());
 }
 
 }  // namespace fsi::coupling

@@ -4,17 +4,23 @@
 // explicit steps as needed (subcycling), takes the flow's pressure at the interface nodes and returns their
 // displacements and velocities. Checkpoints let an implicit coupling repeat a step exactly.
 //
+// The flow's load arrives as a pressure per interface node (follower load on the current geometry) or as
+// nodal forces, 3 per interface node (the conservative transfer of the fluid's face forces; what the
+// OpenFOAM adapter uses).
+//
 // Call sequence per fluid step [t, t + Δt]:
-//   setPressure(p(t), p(t+Δt));  advance(Δt);  interfaceDisplacement();   // (+ restoreCheckpoint() to
-//   iterate)
+//   setPressure(p(t), p(t+Δt)) or setForces(f(t), f(t+Δt));  advance(Δt);  interfaceDisplacement();
+//   (+ restoreCheckpoint() to iterate)
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "coupling/interface/InterfaceMesh.hpp"
 #include "coupling/scheme/Solvers.hpp"
 #include "structure/integrate/CentralDifference.hpp"
+#include "structure/io/SceneFrames.hpp"
 #include "structure/scene/Scene.hpp"
 
 namespace fsi::coupling {
@@ -37,6 +43,11 @@ class StructureParticipant final : public StructureSolver {
 
   /// Pressure at the interface nodes at the start and the end of the next fluid step [Pa].
   void setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd);
+  /// Nodal forces (3 per interface node, xyz) at the start and the end of the next fluid step [N].
+  void setForces(const std::vector<double>& fStart, const std::vector<double>& fEnd);
+  /// At least this many structural steps per fluid step (1 = as the stability limit allows). Used to show
+  /// that subcycling does not change a coupled answer beyond the time-discretisation error.
+  void setMinSubcycles(int n) { minSubcycles_ = std::max(1, n); }
   /// Integrates [t, t + dt] with the explicit solver (subcycling) under the interpolated pressure.
   void advance(double dt);
 
@@ -45,12 +56,24 @@ class StructureParticipant final : public StructureSolver {
   /// Sum of the interface pressure forces at the current state (for conservation checks) [N].
   std::array<double, 3> interfaceForce() const;
 
-  /// StructureSolver: loads = interface pressure per node at both ends of [t, t+dt]; returns the interface
-  /// displacement (3 per node) at t+dt.
+  /// StructureSolver: loads = interface pressure per node (numInterfaceNodes() values) or nodal forces
+  /// (3 per node) at both ends of [t, t+dt]; returns the interface displacement (3 per node) at t+dt.
   Eigen::VectorXd solve(double t, double dt, const Eigen::VectorXd& loadsStart,
                         const Eigen::VectorXd& loadsEnd) override;
   void saveCheckpoint() override;
   void restoreCheckpoint() override;
+
+  /// Restart file (HDF5, structure/io/StateFile): positions, velocities, time, step size and step count,
+  /// plus any `arrays` of the caller (e.g. the coupling scheme's displacement history).
+  void writeState(const std::filesystem::path& file,
+                  const std::map<std::string, std::vector<double>>& arrays = {}) const;
+  /// Continues from a restart file and returns its arrays; throws fsi::InputError naming the file when it
+  /// does not fit the scene.
+  std::map<std::string, std::vector<double>> readState(const std::filesystem::path& file);
+
+  /// Results series (HDF5 + XDMF) of the whole structure: open once, then one frame per call.
+  void openResults(const std::filesystem::path& h5File);
+  void writeResults();
 
   structure::Scene& scene() { return scene_; }
   const structure::CentralDifference& integrator() const { return *cd_; }
@@ -59,8 +82,11 @@ class StructureParticipant final : public StructureSolver {
   structure::Scene scene_;
   std::unique_ptr<structure::CentralDifference> cd_;
   InterfaceMesh mesh_;
-  std::vector<double> pStart_, pEnd_;
+  std::vector<double> loadStart_, loadEnd_;
+  bool forces_ = false;  ///< the loads are nodal forces, not pressures
+  int minSubcycles_ = 1;
   structure::CentralDifference::Checkpoint checkpoint_;
+  std::unique_ptr<structure::SceneFrames> frames_;
 };
 
 }  // namespace fsi::coupling

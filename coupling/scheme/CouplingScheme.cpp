@@ -34,6 +34,17 @@ double CouplingScheme::initialize(double t0, const Eigen::VectorXd& displacement
   return config_.timeWindowSize;
 }
 
+void CouplingScheme::restoreHistory(const std::vector<Eigen::VectorXd>& newestFirst) {
+  requireInitialized("restoreHistory");
+  if (newestFirst.empty()) return;
+  for (const auto& d : newestFirst)
+    if (d.size() != history_.front().size())
+      throw CouplingError("CouplingScheme::restoreHistory: displacement of size " + std::to_string(d.size()) +
+                          ", expected " + std::to_string(history_.front().size()));
+  history_.assign(newestFirst.begin(), newestFirst.begin() + std::min<std::size_t>(3, newestFirst.size()));
+  input_ = predictor();
+}
+
 bool CouplingScheme::isCouplingOngoing() const {
   // Relative slack so that accumulated round-off in t does not add a window.
   return initialized_ && t_ < config_.endTime - 1e-9 * config_.timeWindowSize;

@@ -72,6 +72,12 @@ class CouplingScheme {
   /// Start at t0 with the interface displacement and the fluid's loads at t0; returns the window size.
   double initialize(double t0, const Eigen::VectorXd& displacement0, const Eigen::VectorXd& loads0);
 
+  /// After initialize(): continue a run whose accepted end displacements were `newestFirst` (the first is
+  /// the current displacement; at most 3 are used), so a restart predicts like the uninterrupted run.
+  void restoreHistory(const std::vector<Eigen::VectorXd>& newestFirst);
+  /// Accepted end displacements, newest first (what restoreHistory() takes).
+  const std::vector<Eigen::VectorXd>& history() const { return history_; }
+
   /// Hand over the fluid's loads at the end of the current window (for the current displacement()); runs
   /// the structure and decides whether the window is complete. Returns the size of the next solve.
   double advance(const Eigen::VectorXd& loads);

@@ -31,14 +31,38 @@ void InterfacePressure::setWindow(double t0, double t1, const std::vector<double
   p0_ = pStart;
   p1_ = pEnd;
   rule_ = rule;
+  forces_ = false;
+}
+
+void InterfacePressure::setForceWindow(double t0, double t1, const std::vector<double>& fStart,
+                                       const std::vector<double>& fEnd, WindowLoad rule) {
+  if (fStart.size() != 3 * nodes_.size() || fEnd.size() != 3 * nodes_.size())
+    throw std::invalid_argument("interface forces: three values per interface node expected");
+  t0_ = t0;
+  t1_ = t1;
+  p0_ = fStart;
+  p1_ = fEnd;
+  rule_ = rule;
+  forces_ = true;
+}
+
+double InterfacePressure::windowFraction(double time) const {
+  return rule_ == WindowLoad::Mean                   ? 0.5
+         : rule_ == WindowLoad::End || !(t1_ > t0_) ? 1.0
+                                                     : std::clamp((time - t0_) / (t1_ - t0_), 0.0, 1.0);
 }
 
 void InterfacePressure::addForces(ForceContext& ctx) const {
-  const double s = rule_ == WindowLoad::Mean ? 0.5
-                   : rule_ == WindowLoad::End || !(t1_ > t0_)
-                       ? 1.0
-                       : std::clamp((ctx.time - t0_) / (t1_ - t0_), 0.0, 1.0);
+  const double s = windowFraction(ctx.time);
   const std::size_t n = nodes_.size();
+  if (forces_) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t d = 3 * i + std::size_t(k);
+        ctx.fext[3 * nodes_[i] + k] += ctx.loadFactor * (p0_[d] + s * (p1_[d] - p0_[d]));
+      }
+    return;
+  }
   for (std::size_t i = 0; i < n; ++i) p_[i] = ctx.loadFactor * (p0_[i] + s * (p1_[i] - p0_[i]));
   const double* __restrict x = ctx.x;
   double* __restrict f = ctx.fext;

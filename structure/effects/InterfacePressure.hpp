@@ -6,6 +6,11 @@
 // value). Default: the MEAN of the start and end values held over the window — the window's trapezoidal
 // impulse, as the fluid integrates it; linear interpolation destabilises a subcycled structure under a heavy
 // added mass (docs/COUPLING.md).
+//
+// Alternatively the flow delivers NODAL FORCES (3 per interface node, the conservative transfer Hᵀ f of the
+// fluid's face forces): they are added as given, with the same window rule. Forces computed by the fluid
+// on its deformed mesh at both window ends need no follower update within the window, and their sum is the
+// fluid's interface force to round-off (the Kalro–Tezduyar conservation check).
 
 #include <string>
 #include <vector>
@@ -27,6 +32,10 @@ class InterfacePressure final : public Effect {
   /// Pressure values (one per interface node) at the start and end of the window [t0, t1].
   void setWindow(double t0, double t1, const std::vector<double>& pStart, const std::vector<double>& pEnd,
                  WindowLoad rule);
+  /// Nodal forces (3 per interface node, xyz) at the start and end of [t0, t1]; replaces the pressure.
+  void setForceWindow(double t0, double t1, const std::vector<double>& fStart, const std::vector<double>& fEnd,
+                      WindowLoad rule);
+  bool carriesForces() const { return forces_; }
   const std::vector<int>& nodes() const { return nodes_; }
   /// Interface triangles as model node indices, 3 per triangle.
   std::vector<int> triangles() const {
@@ -36,9 +45,12 @@ class InterfacePressure final : public Effect {
   }
 
  private:
+  double windowFraction(double time) const;
+
   std::vector<int> conn_;   ///< triangles as local interface node indices
   std::vector<int> nodes_;  ///< interface node -> model node
-  std::vector<double> p0_, p1_;
+  std::vector<double> p0_, p1_;  ///< pressures (1 per node) or forces (3 per node)
+  bool forces_ = false;
   double t0_ = 0, t1_ = 1;
   WindowLoad rule_ = WindowLoad::Mean;
   mutable std::vector<double> p_;  ///< pressure at the current time (scratch, sized once)

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "structure/io/ResultsWriter.hpp"
+#include "structure/io/SceneFrames.hpp"
 #include "structure/io/StateFile.hpp"
 
 namespace fsi::structure {
@@ -150,68 +151,6 @@ std::map<std::string, double> evaluateProbes(const Scene& scene) {
 
 namespace {
 
-class Frames {
- public:
-  Frames(const Scene& scene, const std::filesystem::path& file) : scene_(scene) {
-    const Model& m = *scene.model;
-    std::vector<std::array<int, 3>> tris(m.membranes.count);
-    for (int e = 0; e < m.membranes.count; ++e)
-      tris[e] = {m.membranes.conn[3 * e], m.membranes.conn[3 * e + 1], m.membranes.conn[3 * e + 2]};
-    std::vector<std::array<int, 2>> lines(m.cables.count);
-    for (int e = 0; e < m.cables.count; ++e) lines[e] = {m.cables.conn[2 * e], m.cables.conn[2 * e + 1]};
-    writer_ = std::make_unique<ResultsWriter>(file, m.nodes.count, std::move(tris), std::move(lines));
-  }
-
-  void write(double time, long step) {
-    const Model& m = *scene_.model;
-    const Nodes& N = m.nodes;
-    const auto& f = scene_.output.fields;
-    std::vector<FieldView> views;
-    u_.resize(3 * N.count);
-    for (int i = 0; i < 3 * N.count; ++i) u_[i] = N.x[i] - N.X[i];
-    if (f.count("displacement")) views.push_back({"displacement", FieldView::Center::Node, 3, u_.data()});
-    if (f.count("velocity")) views.push_back({"velocity", FieldView::Center::Node, 3, N.v.data()});
-    if (f.count("residual")) {
-      // Out-of-balance force f_ext − f_int on free dofs (forces as last evaluated by the solver).
-      r_.resize(3 * N.count);
-      for (int i = 0; i < 3 * N.count; ++i) r_[i] = N.invMassDof[i] != 0.0 ? N.fext[i] - N.fint[i] : 0.0;
-      views.push_back({"residual", FieldView::Center::Node, 3, r_.data()});
-    }
-    if (scene_.membrane && (f.count("stress") || f.count("principal_stress") || f.count("wrinkle_state"))) {
-      scene_.membrane->evaluate(N.x.data(), stress_);
-      major_.resize(m.membranes.count);
-      minor_.resize(m.membranes.count);
-      for (int e = 0; e < m.membranes.count; ++e) {
-        major_[e] = stress_.principal[2 * e];
-        minor_[e] = stress_.principal[2 * e + 1];
-      }
-      if (f.count("stress"))
-        views.push_back({"stress", FieldView::Center::Triangle, 6, stress_.cauchy.data()});
-      if (f.count("principal_stress")) {
-        views.push_back({"principal_stress_major", FieldView::Center::Triangle, 1, major_.data()});
-        views.push_back({"principal_stress_minor", FieldView::Center::Triangle, 1, minor_.data()});
-      }
-      if (f.count("wrinkle_state"))
-        views.push_back({"wrinkle_state", FieldView::Center::Triangle, 1, stress_.state.data()});
-    }
-    if (scene_.cable && f.count("cable_force")) {
-      scene_.cable->evaluate(N.x.data(), tension_);
-      views.push_back({"cable_force", FieldView::Center::Line, 1, tension_.data()});
-    }
-    writer_->writeStep(time, step, N.x.data(), views);
-    lastTime_ = time;
-  }
-  double lastTime() const { return lastTime_; }
-  ResultsWriter& writer() { return *writer_; }
-
- private:
-  const Scene& scene_;
-  std::unique_ptr<ResultsWriter> writer_;
-  std::vector<double> u_, r_, major_, minor_, tension_;
-  MembraneStressField stress_;
-  double lastTime_ = -1;
-};
-
 struct Snapshot {
   std::vector<double> x, v;
   double time = 0, dt = 0;
@@ -313,7 +252,7 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
         N.count, model.membranes.count, model.cables.count, scene.solver.method,
         rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
   }
-  Frames frames(scene, opt.outDir / "results.h5");
+  SceneFrames frames(scene, opt.outDir / "results.h5");
   frames.write(0.0, 0);
   DynamicRelaxation dr(model, scene.effectList(), scene.constraints, rs);
   gInterrupted = 0;
@@ -398,7 +337,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   Nodes& N = model.nodes;
   const TimeControl& tc = scene.time;
   CentralDifference cd(model, scene.effectList(), scene.constraints, tc.integrator);
-  Frames frames(scene, opt.outDir / "results.h5");
+  SceneFrames frames(scene, opt.outDir / "results.h5");
   RunResult result;
 
   if (!opt.quiet) {

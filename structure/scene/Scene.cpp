@@ -440,6 +440,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   // Time control (mass scaling must precede the effects, which cache wave speeds).
   if (relaxation) {
     if (top.has("time")) top.failAt("time", "a dynamic-relaxation scene has no time control (see 'solver')");
+  } else if (!top.has("time") && top.has("coupling")) {
+    // The structural side of a coupled run: the flow solver sets the end; the step is automatic.
+    scene.time.endTime = std::numeric_limits<double>::infinity();
   } else {
     YamlMap t = top.map("time");
     TimeControl& tc = scene.time;
@@ -451,6 +454,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       s.finish({"tolerance", "max_time"});
       if (!(tc.staticTolerance > 0)) s.failAt("tolerance", "must be > 0");
       if (t.has("end")) t.failAt("end", "give either 'end' or 'until_static', not both");
+    } else if (top.has("coupling") && !t.has("end")) {
+      tc.endTime = std::numeric_limits<double>::infinity();  // set by the flow solver
     } else {
       tc.endTime = t.number("end");
     }

@@ -256,8 +256,9 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     }
     scheme_->restoreHistory(history);
   }
+  if (implicit_ || verifyCheckpoint_) checkpoint_->save();
   if (implicit_) {
-    checkpoint_->save();
+    Info << "fsiCoupling: the fluid checkpoint holds " << checkpoint_->fieldNames() << endl;
     // The last window must be repeatable: Time::run() ends the loop at endTime before a restored step could
     // run again, so the solver gets one spare step and the object stops the run when the last window is
     // accepted.
@@ -386,7 +387,7 @@ bool fsiCoupling::execute() {
   } else {
     logWindow(fluidTotal, loads);
     if (time_.writeTime() || finished) writeStructure();
-    if (implicit_ && !finished) checkpoint_->save();
+    if ((implicit_ || verifyCheckpoint_) && !finished) checkpoint_->save();
   }
   const auto t3 = Clock::now();
   sendDisplacement();

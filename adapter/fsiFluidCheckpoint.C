@@ -29,13 +29,16 @@ class FieldStore final : public fsiFluidCheckpoint::Store {
     }
   }
   void restore() override {
-    FieldType* level = &field_;
+    // Collect the live levels first: oldTime() shifts the levels of a field whose time index is not the
+    // current one, so it must not be called once saved indices are back in place. Then assign without
+    // touching the access time (primitiveFieldRef(false), boundaryFieldRef(false)), which would shift too.
+    std::vector<FieldType*> live{&field_};
+    while (live.size() < levels_.size()) live.push_back(&live.back()->oldTime());
     for (std::size_t i = 0; i < levels_.size(); ++i) {
-      // Forced assignment: fixed-value boundaries take the saved values too.
-      level->primitiveFieldRef() = levels_[i]->primitiveField();
-      forAll(level->boundaryFieldRef(), p) level->boundaryFieldRef()[p] == levels_[i]->boundaryField()[p];
-      level->timeIndex() = indices_[i];
-      if (i + 1 < levels_.size()) level = &level->oldTime();
+      live[i]->primitiveFieldRef(false) = levels_[i]->primitiveField();
+      auto& bf = live[i]->boundaryFieldRef(false);
+      forAll(bf, p) bf[p] == levels_[i]->boundaryField()[p];  // forced: fixed values too
+      live[i]->timeIndex() = indices_[i];
     }
   }
 
@@ -59,17 +62,20 @@ void fsiFluidCheckpoint::collect() {
     if (geometry.found(name) || name.endsWith("_0") || name.endsWith("_fsiCheckpoint")) continue;
     FieldType& f = const_cast<FieldType&>(mesh_.lookupObject<FieldType>(name));
     stores_.emplace_back(new FieldStore<FieldType>(f));
+    names_.append(name);
   }
 }
 
 void fsiFluidCheckpoint::save() {
   stores_.clear();
+  names_.clear();
   collect<volScalarField>();
   collect<volVectorField>();
   collect<surfaceScalarField>();
   collect<surfaceVectorField>();
   collect<pointScalarField>();
   collect<pointVectorField>();
+  points_ = mesh_.points();
   time_ = mesh_.time().value();
   timeIndex_ = mesh_.time().timeIndex();
   saved_ = true;
@@ -77,6 +83,10 @@ void fsiFluidCheckpoint::save() {
 
 void fsiFluidCheckpoint::restore() {
   if (!saved_) FatalErrorInFunction << "fsiCoupling: no fluid checkpoint to restore" << exit(FatalError);
+  // Mesh points back first (still at the failed pass's time index, so OpenFOAM keeps the start-of-window
+  // old points and volumes): the motion solver then assembles its Laplacian on the same geometry as in the
+  // first pass. The fields come after, overwriting anything the motion touched.
+  const_cast<fvMesh&>(mesh_).movePoints(points_);
   for (auto& s : stores_) s->restore();
   const_cast<Time&>(mesh_.time()).setTime(time_, timeIndex_);
 }

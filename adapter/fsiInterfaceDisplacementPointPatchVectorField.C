@@ -35,8 +35,10 @@ void fsiInterfaceDisplacementPointPatchVectorField::setDisplacement(const vector
 
 void fsiInterfaceDisplacementPointPatchVectorField::updateCoeffs() {
   if (this->updated()) return;
-  if (hasNext_)
+  if (hasNext_) {
+    if (debug) Info << "fsiInterfaceDisplacement " << this->patch().name() << ": max |d| " << gMax(mag(next_)) << " sum " << gSum(next_) << endl;
     this->operator==(next_);
+  }
   else if (this->db().time().timeIndex() > startIndex_)
     FatalErrorInFunction << "fsiInterfaceDisplacement on patch " << this->patch().name()
                          << ": the mesh moves but no fsiCoupling function object has set the interface "

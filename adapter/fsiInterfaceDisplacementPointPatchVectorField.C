@@ -16,7 +16,7 @@ fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatc
 fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
     const fsiInterfaceDisplacementPointPatchVectorField& ptf, const pointPatch& p,
     const DimensionedField<vector, pointMesh>& iF, const pointPatchFieldMapper& mapper)
-    : fixedValuePointPatchField<vector>(ptf, p, iF, mapper), startIndex_(iF.time().timeIndex()) {}
+    : fixedValuePointPatchField<vector>(ptf, p, iF, mapper), startIndex_(ptf.startIndex_) {}
 
 fsiInterfaceDisplacementPointPatchVectorField::fsiInterfaceDisplacementPointPatchVectorField(
     const fsiInterfaceDisplacementPointPatchVectorField& ptf, const DimensionedField<vector, pointMesh>& iF)

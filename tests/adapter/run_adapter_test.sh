@@ -19,7 +19,7 @@ mode=$1 lib=$2 work=$3
 here="$(cd "$(dirname "$0")" && pwd)"
 export WM_PROJECT_DIR=/usr/share/openfoam
 case_dir=cavity-moving
-case "$mode" in forces|wrong-patch|bad-scene) case_dir=cavity ;; esac
+case "$mode" in forces|wrong-patch) case_dir=cavity ;; esac
 rm -rf "$work" && mkdir -p "$work"
 
 fail() { echo "FAIL: $*"; [ -f "${log:-}" ] && tail -30 "$log"; exit 1; }
@@ -77,7 +77,7 @@ case "$mode" in
     prepare "$work/case"
     case "$mode" in
       wrong-patch) sed -i 's/fsiCoupling; libs ("\([^"]*\)"); patches (bottom)/fsiCoupling; libs ("\1"); patches (botom)/' "$work/case/system/controlDict" ;;
-      bad-scene) sed -i 's/rho 1.2; pRef 0; }/rho 1.2; pRef 0; scene "missing.yaml"; }/' "$work/case/system/controlDict" ;;
+      bad-scene) sed -i 's/scene "structure.yaml";/scene "missing.yaml";/' "$work/case/system/controlDict" ;;
     esac
     solve "$work/case"
     case "$mode" in

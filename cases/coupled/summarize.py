@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Writes summary.json of a coupled case from its structure/coupling*.csv, structure/timing.json and
+reference.yaml: probe histories reduced to the quantities the reference names, compared with the published
+values, plus the coupling statistics and the wall time.
+
+Usage: summarize.py CASE_DIR WALL_SECONDS
+"""
+import csv
+import glob
+import json
+import os
+import sys
+
+import yaml
+
+
+def history(case, probe):
+    rows = []
+    for f in sorted(glob.glob(os.path.join(case, "structure", "coupling*.csv")), key=os.path.getmtime):
+        rows += list(csv.DictReader(open(f)))
+    t = [float(r["time"]) for r in rows]
+    v = [float(r[probe]) for r in rows]
+    return rows, t, v
+
+
+def local_maxima(t, v):
+    return [(t[i], v[i]) for i in range(1, len(v) - 1) if v[i - 1] < v[i] >= v[i + 1]]
+
+
+def measure(t, v, spec):
+    """One scalar from a history: first local maximum after t_min, global max/min in a window, value at t."""
+    kind = spec["measure"]
+    lo, hi = spec.get("from", -1e300), spec.get("to", 1e300)
+    sel = [(a, b) for a, b in zip(t, v) if lo <= a <= hi]
+    if not sel:
+        return None, None
+    if kind == "first_peak":
+        peaks = [p for p in local_maxima(t, v) if lo <= p[0] <= hi]
+        return peaks[0] if peaks else (None, None)
+    if kind == "max":
+        return max(sel, key=lambda p: p[1])
+    if kind == "min":
+        return min(sel, key=lambda p: p[1])
+    if kind == "final":
+        return sel[-1]
+    raise ValueError(f"unknown measure {kind}")
+
+
+def main():
+    case, wall = sys.argv[1], float(sys.argv[2])
+    ref = yaml.safe_load(open(os.path.join(case, "reference.yaml")))
+    timing = json.load(open(os.path.join(case, "structure", "timing.json")))
+    out = {"case": os.path.basename(os.path.abspath(case)), "wall_seconds": wall, "coupling": timing,
+           "results": {}, "all_within_tolerance": True, "all_checks_within_tolerance": True}
+    rows, t, _ = history(case, ref["probe"])
+    worst = 0.0
+    for r in rows:
+        f = [float(r[k + "_fluid"]) for k in ("Fx", "Fy", "Fz")]
+        s = [float(r[k + "_structure"]) for k in ("Fx", "Fy", "Fz")]
+        scale = max(abs(x) for x in f)
+        if scale > 0:
+            worst = max(worst, max(abs(a - b) for a, b in zip(f, s)) / scale)
+    out["interface_force_relative_difference"] = worst
+    out["end_time"] = t[-1] if t else None
+    _, t, v = history(case, ref["probe"])
+    for name, spec in ref["quantities"].items():
+        when, value = measure(t, v, spec)
+        entry = {"value": value, "time": when, "published": spec["published"]}
+        pub = [p["value"] for p in spec["published"]]
+        lo, hi = min(pub), max(pub)
+        tol = spec.get("tolerance", 0.1)
+        entry["accepted_range"] = [lo - tol * abs(lo), hi + tol * abs(hi)]
+        entry["within"] = value is not None and entry["accepted_range"][0] <= value <= entry["accepted_range"][1]
+        entry["check"] = bool(spec.get("check", False))
+        out["all_within_tolerance"] &= entry["within"]
+        if entry["check"]:
+            out["all_checks_within_tolerance"] &= entry["within"]
+        out["results"][name] = entry
+    json.dump(out, open(os.path.join(case, "summary.json"), "w"), indent=2)
+    print(json.dumps({k: (v["value"], v["time"], v["within"]) for k, v in out["results"].items()}))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -165,7 +165,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   const scalar endTime = time_.endTime().value();
   const auto& pd = mesh_.lookupObject<pointVectorField>("pointDisplacement");
   for (const label id : patchIDs_) interfaces_.emplace_back(new fsiInterfacePatch(mesh_, id, pd));
-  checkpoint_.reset(new fsiFluidCheckpoint(mesh_));
+  checkpoint_.reset(
+      new fsiFluidCheckpoint(mesh_, verifyCheckpoint_ || dict.lookupOrDefault<Switch>("restoreMeshPoints", true)));
 
   const fileName outDir = time_.globalPath() / "structure";
   std::map<std::string, std::vector<double>> restartArrays;

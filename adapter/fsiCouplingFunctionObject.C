@@ -1,5 +1,3 @@
-#include "fsiCouplingFunctionObject.H"
-
 #include <Eigen/Core>
 #include <cmath>
 #include <map>
@@ -9,6 +7,7 @@
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/mapping/L2Projection.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
+#include "fsiCouplingFunctionObject.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
 #include "fvcGrad.H"
 #include "movingWallVelocityFvPatchVectorField.H"
@@ -83,9 +82,9 @@ bool fsiCoupling::read(const dictionary& dict) {
                                    << exit(FatalIOError);
   }
   if (mesh_.foundObject<volScalarField>("p_rgh"))
-    FatalIOErrorInFunction(dict) << "fsiCoupling: this solver uses p_rgh (buoyancy); the interface load needs "
-                                 << "the static pressure p of an incompressible solver such as pimpleFoam"
-                                 << exit(FatalIOError);
+    FatalIOErrorInFunction(dict)
+        << "fsiCoupling: this solver uses p_rgh (buoyancy); the interface load needs "
+        << "the static pressure p of an incompressible solver such as pimpleFoam" << exit(FatalIOError);
   if (!mesh_.foundObject<volScalarField>("p"))
     FatalIOErrorInFunction(dict) << "fsiCoupling: no pressure field p" << exit(FatalIOError);
   if (dict.found("scene") && !structure_ && !scheme_ && interfaces_.empty()) startCoupling(dict);
@@ -124,11 +123,13 @@ vector fsiCoupling::pressureForce() const {
 
 void fsiCoupling::checkSetUp(const dictionary& dict) const {
   if (time_.controlDict().lookupOrDefault<Switch>("adjustTimeStep", false))
-    FatalIOErrorInFunction(dict) << "fsiCoupling: `adjustTimeStep yes` in controlDict: coupling windows have a "
-                                 << "fixed size; set deltaT and adjustTimeStep no" << exit(FatalIOError);
+    FatalIOErrorInFunction(dict)
+        << "fsiCoupling: `adjustTimeStep yes` in controlDict: coupling windows have a "
+        << "fixed size; set deltaT and adjustTimeStep no" << exit(FatalIOError);
   if (viscous_ && !mesh_.foundObject<turbulenceModel>(turbulenceModel::propertiesName))
-    FatalIOErrorInFunction(dict) << "fsiCoupling: `viscous yes` needs the solver's turbulence (or laminar) model"
-                                 << exit(FatalIOError);
+    FatalIOErrorInFunction(dict)
+        << "fsiCoupling: `viscous yes` needs the solver's turbulence (or laminar) model"
+        << exit(FatalIOError);
   if (!mesh_.foundObject<pointVectorField>("pointDisplacement"))
     FatalIOErrorInFunction(dict)
         << "fsiCoupling: the mesh does not move (no pointDisplacement field): constant/dynamicMeshDict needs "
@@ -139,8 +140,8 @@ void fsiCoupling::checkSetUp(const dictionary& dict) const {
   forAll(patchIDs_, i) {
     const label id = patchIDs_[i];
     if (!isA<fsiInterfaceDisplacementPointPatchVectorField>(pd.boundaryField()[id]))
-      FatalIOErrorInFunction(dict) << "fsiCoupling: pointDisplacement on patch " << patches_[i] << " is of type "
-                                   << pd.boundaryField()[id].type()
+      FatalIOErrorInFunction(dict) << "fsiCoupling: pointDisplacement on patch " << patches_[i]
+                                   << " is of type " << pd.boundaryField()[id].type()
                                    << "; the coupling sets it: use type fsiInterfaceDisplacement in "
                                    << "0/pointDisplacement" << exit(FatalIOError);
     if (!isA<movingWallVelocityFvPatchVectorField>(U.boundaryField()[id]))
@@ -165,8 +166,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   const scalar endTime = time_.endTime().value();
   const auto& pd = mesh_.lookupObject<pointVectorField>("pointDisplacement");
   for (const label id : patchIDs_) interfaces_.emplace_back(new fsiInterfacePatch(mesh_, id, pd));
-  checkpoint_.reset(
-      new fsiFluidCheckpoint(mesh_, verifyCheckpoint_ || dict.lookupOrDefault<Switch>("restoreMeshPoints", true)));
+  checkpoint_.reset(new fsiFluidCheckpoint(
+      mesh_, verifyCheckpoint_ || dict.lookupOrDefault<Switch>("restoreMeshPoints", true)));
 
   const fileName outDir = time_.globalPath() / "structure";
   std::map<std::string, std::vector<double>> restartArrays;
@@ -181,13 +182,16 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     // Projection structure -> each fluid patch, on the reference geometry.
     fsi::coupling::ProjectionOptions opt;
     opt.mass = projectionKind(dict);
-    opt.tolerance = dict.lookupOrDefault<scalar>("mapTolerance", 0.25 * structure_->interfaceMesh().meanEdgeLength());
+    opt.tolerance =
+        dict.lookupOrDefault<scalar>("mapTolerance", 0.25 * structure_->interfaceMesh().meanEdgeLength());
     for (const auto& ip : interfaces_) {
-      maps_.emplace_back(new fsi::coupling::L2Projection(structure_->interfaceMesh(), ip->referenceMesh(), opt));
+      maps_.emplace_back(
+          new fsi::coupling::L2Projection(structure_->interfaceMesh(), ip->referenceMesh(), opt));
       const auto& r = maps_.back()->report();
       Info << "fsiCoupling: patch " << ip->name() << ": " << r.targetNodes << " fluid points <- "
            << r.sourceNodes << " structure nodes, " << fsi::coupling::toString(opt.mass)
-           << " L2 projection, largest gap " << r.maxGap << " m, set up in " << r.setupSeconds << " s" << endl;
+           << " L2 projection, largest gap " << r.maxGap << " m, set up in " << r.setupSeconds << " s"
+           << endl;
       if (!r.allMapped()) {
         FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
                                      << ip->name() << " are farther than mapTolerance " << opt.tolerance
@@ -208,14 +212,15 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         FatalErrorInFunction << "fsiCoupling: " << e.what() << exit(FatalError);
       }
       if (std::abs(structure_->time() - time_.value()) > 1e-9 * max(dt, 1.0))
-        FatalErrorInFunction << "fsiCoupling: structure state " << state << " is at t = " << structure_->time()
-                             << " s, the fluid at " << time_.value() << " s" << exit(FatalError);
+        FatalErrorInFunction << "fsiCoupling: structure state " << state
+                             << " is at t = " << structure_->time() << " s, the fluid at " << time_.value()
+                             << " s" << exit(FatalError);
       Info << "fsiCoupling: structure restarted from " << state << endl;
     } else if (time_.value() > 0.5 * dt) {
-      FatalErrorInFunction << "fsiCoupling: the run starts at t = " << time_.value()
-                           << " s but there is no structure state " << state
-                           << " (a restart needs the state written with that time directory; a new run starts "
-                           << "at t = 0)" << exit(FatalError);
+      FatalErrorInFunction
+          << "fsiCoupling: the run starts at t = " << time_.value() << " s but there is no structure state "
+          << state << " (a restart needs the state written with that time directory; a new run starts "
+          << "at t = 0)" << exit(FatalError);
     }
 
     fsi::coupling::CouplingConfig cfg;
@@ -229,10 +234,14 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         cfg, *structure_, implicit_ ? fsi::coupling::makeAcceleration(accelerationConfig(dict)) : nullptr);
     mkDir(outDir);
     const bool fresh = time_.value() <= 0.5 * dt;
-    structure_->openResults(std::string(outDir / (fresh ? word("results.h5") : "results_from_" + time_.timeName() + ".h5")));
-    log_.reset(new OFstream(outDir / (fresh ? word("coupling.csv") : "coupling_from_" + time_.timeName() + ".csv")));
-    *log_ << "time,iterations,converged,residual,Fx_fluid,Fy_fluid,Fz_fluid,Fx_structure,Fy_structure,Fz_structure";
-    for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene())) *log_ << ',' << name.c_str();
+    structure_->openResults(
+        std::string(outDir / (fresh ? word("results.h5") : "results_from_" + time_.timeName() + ".h5")));
+    log_.reset(
+        new OFstream(outDir / (fresh ? word("coupling.csv") : "coupling_from_" + time_.timeName() + ".csv")));
+    *log_ << "time,iterations,converged,residual,Fx_fluid,Fy_fluid,Fz_fluid,Fx_structure,Fy_structure,Fz_"
+             "structure";
+    for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene()))
+      *log_ << ',' << name.c_str();
     *log_ << endl;
     log_->precision(12);
     Info << "fsiCoupling: structure " << scene_ << ", " << structure_->numInterfaceNodes()
@@ -253,7 +262,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     for (int k = 0; k < 3; ++k) {
       const auto it = restartArrays.find("interface_history_" + std::to_string(k));
       if (it != restartArrays.end())
-        history.emplace_back(Eigen::Map<const Eigen::VectorXd>(it->second.data(), Eigen::Index(it->second.size())));
+        history.emplace_back(
+            Eigen::Map<const Eigen::VectorXd>(it->second.data(), Eigen::Index(it->second.size())));
     }
     scheme_->restoreHistory(history);
   }
@@ -314,7 +324,8 @@ void fsiCoupling::writeStructure() {
   std::map<std::string, std::vector<double>> arrays;
   const auto& h = scheme_->history();
   for (std::size_t k = 0; k < h.size(); ++k)
-    arrays["interface_history_" + std::to_string(k)] = std::vector<double>(h[k].data(), h[k].data() + h[k].size());
+    arrays["interface_history_" + std::to_string(k)] =
+        std::vector<double>(h[k].data(), h[k].data() + h[k].size());
   structure_->writeState(std::string(stateFile(time_.timePath())), arrays);
 }
 
@@ -362,8 +373,8 @@ bool fsiCoupling::execute() {
          << gMax(mag(U.primitiveField() - firstPass_.U)) << ", max |dp| "
          << gMax(mag(p.primitiveField() - firstPass_.p)) << ", max |dphi| "
          << gMax(mag(phi.primitiveField() - firstPass_.phi)) << ", max |dV| "
-         << gMax(mag(mesh_.V().field() - firstPass_.V)) << ", max |dx| " << gMax(mag(mesh_.points() - firstPass_.x))
-         << endl;
+         << gMax(mag(mesh_.V().field() - firstPass_.V)) << ", max |dx| "
+         << gMax(mag(mesh_.points() - firstPass_.x)) << endl;
   }
 
   const auto t0 = Clock::now();
@@ -418,16 +429,17 @@ bool fsiCoupling::end() {
     Info << "fsiCoupling: " << s.windows << " windows, " << fluidSolves_ << " fluid solves ("
          << s.meanIterations() << " per window, at most " << s.maxIterations << ", " << s.notConverged
          << " not converged); " << structure_->structuralSteps() << " structural steps" << nl
-         << "fsiCoupling: wall time " << wall << " s: transfer " << tTransfer_ << " s, structure " << tStructure_
-         << " s, checkpoints " << tCheckpoint_ << " s = " << 100.0 * ours / max(wall, 1e-300)
+         << "fsiCoupling: wall time " << wall << " s: transfer " << tTransfer_ << " s, structure "
+         << tStructure_ << " s, checkpoints " << tCheckpoint_ << " s = " << 100.0 * ours / max(wall, 1e-300)
          << " % of the run" << endl;
     OFstream js(time_.globalPath() / "structure" / "timing.json");
     js << "{\"wall_seconds\": " << wall << ", \"transfer_seconds\": " << tTransfer_
        << ", \"structure_seconds\": " << tStructure_ << ", \"checkpoint_seconds\": " << tCheckpoint_
        << ", \"windows\": " << s.windows << ", \"fluid_solves\": " << fluidSolves_
        << ", \"mean_iterations\": " << s.meanIterations() << ", \"max_iterations\": " << s.maxIterations
-       << ", \"not_converged\": " << s.notConverged << ", \"structural_steps\": " << structure_->structuralSteps()
-       << ", \"ranks\": " << Pstream::nProcs() << "}" << endl;
+       << ", \"not_converged\": " << s.notConverged
+       << ", \"structural_steps\": " << structure_->structuralSteps() << ", \"ranks\": " << Pstream::nProcs()
+       << "}" << endl;
   }
   return true;
 }

@@ -1,5 +1,4 @@
 #include "fsiFluidCheckpoint.H"
-
 #include "pointFields.H"
 #include "surfaceFields.H"
 #include "volFields.H"

@@ -1,6 +1,6 @@
+#include "Time.H"
 #include "addToRunTimeSelectionTable.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
-#include "Time.H"
 #include "pointPatchFields.H"
 
 namespace Foam {
@@ -36,10 +36,11 @@ void fsiInterfaceDisplacementPointPatchVectorField::setDisplacement(const vector
 void fsiInterfaceDisplacementPointPatchVectorField::updateCoeffs() {
   if (this->updated()) return;
   if (hasNext_) {
-    if (debug) Info << "fsiInterfaceDisplacement " << this->patch().name() << ": max |d| " << gMax(mag(next_)) << " sum " << gSum(next_) << endl;
+    if (debug)
+      Info << "fsiInterfaceDisplacement " << this->patch().name() << ": max |d| " << gMax(mag(next_))
+           << " sum " << gSum(next_) << endl;
     this->operator==(next_);
-  }
-  else if (this->db().time().timeIndex() > startIndex_)
+  } else if (this->db().time().timeIndex() > startIndex_)
     FatalErrorInFunction << "fsiInterfaceDisplacement on patch " << this->patch().name()
                          << ": the mesh moves but no fsiCoupling function object has set the interface "
                          << "displacement; the coupling did not start (check the fsiCoupling entry in "

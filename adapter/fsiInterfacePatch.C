@@ -1,11 +1,11 @@
 #include "fsiInterfacePatch.H"
-
 #include "globalIndex.H"
 #include "globalMeshData.H"
 
 namespace Foam {
 
-fsiInterfacePatch::fsiInterfacePatch(const fvMesh& mesh, label patchID, const pointVectorField& pointDisplacement)
+fsiInterfacePatch::fsiInterfacePatch(const fvMesh& mesh, label patchID,
+                                     const pointVectorField& pointDisplacement)
     : mesh_(mesh), patchID_(patchID) {
   const polyPatch& pp = mesh.boundaryMesh()[patchID];
   labelList uniqueMeshPoints;
@@ -18,7 +18,8 @@ fsiInterfacePatch::fsiInterfacePatch(const fvMesh& mesh, label patchID, const po
   const vectorField& u = pointDisplacement.primitiveField();
   List<pointField> ownedPoints(Pstream::nProcs());
   ownedPoints[Pstream::myProcNo()].setSize(uniqueMeshPoints.size());
-  forAll(uniqueMeshPoints, i) ownedPoints[Pstream::myProcNo()][i] = x[uniqueMeshPoints[i]] - u[uniqueMeshPoints[i]];
+  forAll(uniqueMeshPoints, i) ownedPoints[Pstream::myProcNo()][i] =
+      x[uniqueMeshPoints[i]] - u[uniqueMeshPoints[i]];
   List<faceList> faces(Pstream::nProcs());
   faceList& mine = faces[Pstream::myProcNo()];
   mine = pp.localFaces();
@@ -30,8 +31,7 @@ fsiInterfacePatch::fsiInterfacePatch(const fvMesh& mesh, label patchID, const po
   reference_.name = pp.name();
   if (!Pstream::master()) return;
   reference_.points.resize(nGlobal_);
-  for (label proc = 0; proc < Pstream::nProcs(); ++proc)
-    forAll(ownedPoints[proc], i) {
+  for (label proc = 0; proc < Pstream::nProcs(); ++proc) forAll(ownedPoints[proc], i) {
       const point& p = ownedPoints[proc][i];
       reference_.points[numbering->toGlobal(proc, i)] = {p.x(), p.y(), p.z()};
     }
@@ -61,15 +61,14 @@ std::vector<double> fsiInterfacePatch::gatherNodalForces(const vectorField& face
   if (!Pstream::master()) return global;
   global.assign(3 * std::size_t(nGlobal_), 0.0);
   for (label proc = 0; proc < Pstream::nProcs(); ++proc)
-    forAll(ids[proc], i)
-      for (direction k = 0; k < 3; ++k) global[3 * std::size_t(ids[proc][i]) + k] += values[proc][i][k];
+    forAll(ids[proc], i) for (direction k = 0; k < 3; ++k) global[3 * std::size_t(ids[proc][i]) + k] +=
+        values[proc][i][k];
   return global;
 }
 
 vectorField fsiInterfacePatch::scatterPointValues(const std::vector<double>& global) const {
   vectorField all(nGlobal_, Zero);
-  if (Pstream::master())
-    forAll(all, i) all[i] = vector(global[3 * i], global[3 * i + 1], global[3 * i + 2]);
+  if (Pstream::master()) forAll(all, i) all[i] = vector(global[3 * i], global[3 * i + 1], global[3 * i + 2]);
   Pstream::scatter(all);
   return vectorField(all, pointToGlobal_);
 }

@@ -69,7 +69,8 @@ void StructureParticipant::advance(double dt) {
   else
     scene_.interfacePressure->setWindow(t0, t1, loadStart_, loadEnd_, scene_.interfaceLoadRule);
   const double scenarioMaxDt = scene_.time.integrator.maxDt;
-  cd_->setMaxDt(minSubcycles_ > 1 ? std::min(scenarioMaxDt, dt / minSubcycles_ * (1 + 1e-12)) : scenarioMaxDt);
+  cd_->setMaxDt(minSubcycles_ > 1 ? std::min(scenarioMaxDt, dt / minSubcycles_ * (1 + 1e-12))
+                                  : scenarioMaxDt);
   while (cd_->time() < t1 * (1 - 1e-14) - 1e-300) {
     if (!cd_->step(t1, false))
       throw std::runtime_error("structure became unstable at t = " + std::to_string(cd_->time()) + " s");
@@ -143,7 +144,8 @@ void StructureParticipant::writeState(const std::filesystem::path& file,
   structure::writeState(file, s);
 }
 
-std::map<std::string, std::vector<double>> StructureParticipant::readState(const std::filesystem::path& file) {
+std::map<std::string, std::vector<double>> StructureParticipant::readState(
+    const std::filesystem::path& file) {
   const structure::StateSnapshot s = structure::readState(file);
   const std::size_t n = scene_.model->nodes.x.size();
   if (s.x.size() != n || s.v.size() != n)

@@ -47,9 +47,9 @@ void InterfacePressure::setForceWindow(double t0, double t1, const std::vector<d
 }
 
 double InterfacePressure::windowFraction(double time) const {
-  return rule_ == WindowLoad::Mean                   ? 0.5
+  return rule_ == WindowLoad::Mean                  ? 0.5
          : rule_ == WindowLoad::End || !(t1_ > t0_) ? 1.0
-                                                     : std::clamp((time - t0_) / (t1_ - t0_), 0.0, 1.0);
+                                                    : std::clamp((time - t0_) / (t1_ - t0_), 0.0, 1.0);
 }
 
 void InterfacePressure::addForces(ForceContext& ctx) const {

@@ -33,8 +33,8 @@ class InterfacePressure final : public Effect {
   void setWindow(double t0, double t1, const std::vector<double>& pStart, const std::vector<double>& pEnd,
                  WindowLoad rule);
   /// Nodal forces (3 per interface node, xyz) at the start and end of [t0, t1]; replaces the pressure.
-  void setForceWindow(double t0, double t1, const std::vector<double>& fStart, const std::vector<double>& fEnd,
-                      WindowLoad rule);
+  void setForceWindow(double t0, double t1, const std::vector<double>& fStart,
+                      const std::vector<double>& fEnd, WindowLoad rule);
   bool carriesForces() const { return forces_; }
   const std::vector<int>& nodes() const { return nodes_; }
   /// Interface triangles as model node indices, 3 per triangle.
@@ -47,8 +47,8 @@ class InterfacePressure final : public Effect {
  private:
   double windowFraction(double time) const;
 
-  std::vector<int> conn_;   ///< triangles as local interface node indices
-  std::vector<int> nodes_;  ///< interface node -> model node
+  std::vector<int> conn_;        ///< triangles as local interface node indices
+  std::vector<int> nodes_;       ///< interface node -> model node
   std::vector<double> p0_, p1_;  ///< pressures (1 per node) or forces (3 per node)
   bool forces_ = false;
   double t0_ = 0, t1_ = 1;

@@ -38,8 +38,7 @@ void SceneFrames::write(double time, long step) {
       major_[e] = stress_.principal[2 * e];
       minor_[e] = stress_.principal[2 * e + 1];
     }
-    if (f.count("stress"))
-      views.push_back({"stress", FieldView::Center::Triangle, 6, stress_.cauchy.data()});
+    if (f.count("stress")) views.push_back({"stress", FieldView::Center::Triangle, 6, stress_.cauchy.data()});
     if (f.count("principal_stress")) {
       views.push_back({"principal_stress_major", FieldView::Center::Triangle, 1, major_.data()});
       views.push_back({"principal_stress_minor", FieldView::Center::Triangle, 1, minor_.data()});

@@ -650,7 +650,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     YamlMap c = top.map("coupling");
     const auto tris = sets.triangles(c.raw("interface"), c.childPath("interface"));
     const std::string rule = c.choice("load_in_window", {"mean", "end", "linear"}, "mean");
-    scene.interfaceLoadRule = rule == "mean" ? WindowLoad::Mean : rule == "end" ? WindowLoad::End : WindowLoad::Linear;
+    scene.interfaceLoadRule = rule == "mean"  ? WindowLoad::Mean
+                              : rule == "end" ? WindowLoad::End
+                                              : WindowLoad::Linear;
     c.finish({"interface", "load_in_window"});
     std::vector<int> conn, nodes;
     for (int e : tris)

@@ -123,3 +123,50 @@ TEST(StructureParticipant, PressureFromANonMatchingFluidMeshKeepsTheTotalForce) 
   EXPECT_NEAR(F[0], 0.0, 1e-9);
   EXPECT_NEAR(F[1], 0.0, 1e-9);
 }
+
+TEST(StructureParticipant, NodalForcesAreAppliedAsGivenWithTheWindowRule) {
+  StructureParticipant s = drum();
+  const int n = s.numInterfaceNodes();
+  // Start and end forces of a window; the default rule holds their mean over the window.
+  std::vector<double> f0(3 * n), f1(3 * n);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      f0[3 * i + k] = 0.1 * (k + 1) + 0.01 * i;
+      f1[3 * i + k] = 0.3 * (k + 1) - 0.02 * i;
+    }
+  s.setForces(f0, f1);
+  s.advance(1e-3);
+  const auto F = s.interfaceForce();
+  for (int k = 0; k < 3; ++k) {
+    double expected = 0;
+    for (int i = 0; i < n; ++i) expected += 0.5 * (f0[3 * i + k] + f1[3 * i + k]);
+    EXPECT_NEAR(F[k], expected, 1e-12 * std::abs(expected)) << "component " << k;
+  }
+  // Through the StructureSolver interface a load vector of 3 values per node means forces.
+  Eigen::VectorXd a = Eigen::Map<Eigen::VectorXd>(f0.data(), 3 * n), b = a;
+  s.solve(s.time(), 1e-3, a, b);
+  const auto G = s.interfaceForce();
+  for (int k = 0; k < 3; ++k) {
+    double expected = 0;
+    for (int i = 0; i < n; ++i) expected += f0[3 * i + k];
+    EXPECT_NEAR(G[k], expected, 1e-12 * std::abs(expected));
+  }
+}
+
+TEST(StructureParticipant, MinimumSubcyclesAreTakenAndRestartStateRoundTrips) {
+  StructureParticipant s = drum();
+  const std::vector<double> p(s.numInterfaceNodes(), 200.0);
+  s.setMinSubcycles(7);
+  EXPECT_GE(s.subcyclesFor(1e-3), 7);
+  const long before = s.structuralSteps();
+  s.setPressure(p, p);
+  s.advance(1e-3);
+  EXPECT_EQ(s.structuralSteps() - before, std::max(7, s.subcyclesFor(1e-3)));
+  const std::string file = std::string(FSI_BINARY_DIR) + "/test-output/participant-state.h5";
+  s.writeState(file, {{"extra", {1.0, 2.0}}});
+  StructureParticipant t = drum();
+  const auto arrays = t.readState(file);
+  EXPECT_EQ(arrays.at("extra"), (std::vector<double>{1.0, 2.0}));
+  EXPECT_DOUBLE_EQ(t.time(), s.time());
+  EXPECT_EQ(t.interfaceDisplacement(), s.interfaceDisplacement());
+}

@@ -112,8 +112,12 @@ tmp<vectorField> fsiCoupling::faceForces(label i) const {
 }
 
 vector fsiCoupling::pressureForce() const {
+  return interfaceForce(false);
+}
+
+vector fsiCoupling::interfaceForce(bool withViscous) const {
   const bool v = viscous_;
-  const_cast<fsiCoupling*>(this)->viscous_ = false;
+  const_cast<fsiCoupling*>(this)->viscous_ = withViscous;
   vector F = Zero;
   forAll(patchIDs_, i) F += sum(faceForces(i)());
   const_cast<fsiCoupling*>(this)->viscous_ = v;
@@ -347,8 +351,10 @@ void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>&
 
 bool fsiCoupling::execute() {
   if (scene_.empty()) {
-    Info << "fsiCoupling: t = " << time_.value() << " s, interface pressure force " << pressureForce() << " N"
-         << endl;
+    Info << "fsiCoupling: t = " << time_.value() << " s, interface pressure force " << pressureForce()
+         << " N";
+    if (viscous_) Info << ", viscous force " << interfaceForce(true) - pressureForce() << " N";
+    Info << endl;
     return true;
   }
   if (ended_) return true;

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs Debian's pimpleFoam with the fsiFoam library on the tiny test cases, in one of the modes:
 #   forces          : monitor mode; the interface pressure force equals OpenFOAM's `forces` object (1e-6)
+#   forces-viscous  : the same for the viscous force (option `viscous yes`)
 #   wrong-patch     : a misspelt patch name stops the solver with a non-zero exit and names the patch
 #   bad-scene       : a missing structure scene stops the solver and names the file
 #   missing-library : without the library the interface boundary condition is a hard error
@@ -19,7 +20,7 @@ mode=$1 lib=$2 work=$3
 here="$(cd "$(dirname "$0")" && pwd)"
 export WM_PROJECT_DIR=/usr/share/openfoam
 case_dir=cavity-moving
-case "$mode" in forces|wrong-patch) case_dir=cavity ;; esac
+case "$mode" in forces|forces-viscous|wrong-patch) case_dir=cavity ;; esac
 rm -rf "$work" && mkdir -p "$work"
 
 fail() { echo "FAIL: $*"; [ -f "${log:-}" ] && tail -30 "$log"; exit 1; }
@@ -73,19 +74,25 @@ PY
 close() { python3 -c "import sys; a, b, t = map(float, sys.argv[1:]); print(f'{a:.9g} vs {b:.9g}: relative difference {abs(a-b)/max(abs(a),abs(b)):.2e} (limit {t:g})'); sys.exit(0 if abs(a-b) <= t*max(abs(a),abs(b)) else 1)" "$@"; }
 
 case "$mode" in
-  forces|wrong-patch|bad-scene)
+  forces|forces-viscous|wrong-patch|bad-scene)
     prepare "$work/case"
     case "$mode" in
+      forces-viscous) sed -i 's/rho 1.2; pRef 0; }/rho 1.2; pRef 0; viscous yes; }/' "$work/case/system/controlDict" ;;
       wrong-patch) sed -i 's/fsiCoupling; libs ("\([^"]*\)"); patches (bottom)/fsiCoupling; libs ("\1"); patches (botom)/' "$work/case/system/controlDict" ;;
       bad-scene) sed -i 's/scene "structure.yaml";/scene "missing.yaml";/' "$work/case/system/controlDict" ;;
     esac
     solve "$work/case"
     case "$mode" in
-      forces)
+      forces|forces-viscous)
         [ $rc -eq 0 ] || fail "pimpleFoam exited with $rc"
         grep -q "fsiCoupling: t = " "$log" || fail "the function object did not run"
-        ours=$(grep "interface pressure force" "$log" | tail -n 1 | sed 's/.*force (\(.*\)) N/\1/')
-        theirs=$(awk '/Sum of forces/{s=1} s&&/Pressure :/{v=$0; s=0} END{print v}' "$log" | sed 's/.*(\(.*\))/\1/')
+        if [ "$mode" = forces ]; then
+          ours=$(grep "interface pressure force" "$log" | tail -n 1 | sed 's/.*pressure force (\([^)]*\)) N.*/\1/')
+          theirs=$(awk '/Sum of forces/{s=1} s&&/Pressure :/{v=$0; s=0} END{print v}' "$log" | sed 's/.*(\(.*\))/\1/')
+        else
+          ours=$(grep "viscous force" "$log" | tail -n 1 | sed 's/.*viscous force (\([^)]*\)) N.*/\1/')
+          theirs=$(awk '/Sum of forces/{s=1} s&&/Viscous *:/{v=$0; s=0} END{print v}' "$log" | sed 's/.*(\(.*\))/\1/')
+        fi
         echo "fsiCoupling: ($ours)  forces: ($theirs)"
         python3 - "$ours" "$theirs" <<'PY' || fail "forces differ"
 import sys

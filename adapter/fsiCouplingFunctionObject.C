@@ -91,7 +91,7 @@ bool fsiCoupling::read(const dictionary& dict) {
   return true;
 }
 
-tmp<vectorField> fsiCoupling::faceForces(label i) const {
+tmp<vectorField> fsiCoupling::faceForces(label i, bool withViscous) const {
   const label id = patchIDs_[i];
   const volScalarField& p = mesh_.lookupObject<volScalarField>("p");
   // Incompressible solvers carry kinematic pressure [m²/s²]: scale by rho like the `forces` function object.
@@ -99,7 +99,7 @@ tmp<vectorField> fsiCoupling::faceForces(label i) const {
   const scalar rho = kinematic ? rho_ : 1.0;
   const vectorField& Sf = mesh_.Sf().boundaryField()[id];
   tmp<vectorField> tf(new vectorField(rho * (p.boundaryField()[id] - pRef_ / rho) * Sf));
-  if (viscous_) {
+  if (withViscous) {
     // Viscous traction as `forces` computes it: Sf & devRhoReff with devReff = -nuEff dev(twoSymm(grad U)).
     const auto& turbulence = mesh_.lookupObject<turbulenceModel>(turbulenceModel::propertiesName);
     const volVectorField& U = mesh_.lookupObject<volVectorField>("U");
@@ -116,11 +116,8 @@ vector fsiCoupling::pressureForce() const {
 }
 
 vector fsiCoupling::interfaceForce(bool withViscous) const {
-  const bool v = viscous_;
-  const_cast<fsiCoupling*>(this)->viscous_ = withViscous;
   vector F = Zero;
-  forAll(patchIDs_, i) F += sum(faceForces(i)());
-  const_cast<fsiCoupling*>(this)->viscous_ = v;
+  forAll(patchIDs_, i) F += sum(faceForces(i, withViscous)());
   reduce(F, sumOp<vector>());
   return F;
 }
@@ -159,8 +156,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   checkSetUp(dict);
   scene_ = dict.get<fileName>("scene").expand();
   if (!scene_.isAbsolute()) scene_ = time_.globalPath() / scene_;
-  implicit_ = dict.lookupOrDefault<word>("scheme", "staggered") == "implicit";
   const word scheme = dict.lookupOrDefault<word>("scheme", "staggered");
+  implicit_ = scheme == "implicit";
   if (scheme != "staggered" && scheme != "implicit")
     FatalIOErrorInFunction(dict) << "fsiCoupling: scheme " << scheme << " unknown; valid: staggered implicit"
                                  << exit(FatalIOError);
@@ -288,7 +285,7 @@ std::vector<double> fsiCoupling::structureLoads(vector& fluidTotal) const {
   if (Pstream::master()) loads.assign(3 * std::size_t(structure_->numInterfaceNodes()), 0.0);
   std::vector<double> fs(loads.size());
   forAll(interfaces_, i) {
-    const tmp<vectorField> f = faceForces(i);
+    const tmp<vectorField> f = faceForces(i, viscous_);
     fluidTotal += sum(f());
     const std::vector<double> nodal = interfaces_[i]->gatherNodalForces(f());
     if (Pstream::master()) {

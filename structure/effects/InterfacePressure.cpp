@@ -26,24 +26,24 @@ void InterfacePressure::setWindow(double t0, double t1, const std::vector<double
                                   const std::vector<double>& pEnd, WindowLoad rule) {
   if (pStart.size() != nodes_.size() || pEnd.size() != nodes_.size())
     throw std::invalid_argument("interface pressure: one value per interface node expected");
-  t0_ = t0;
-  t1_ = t1;
-  p0_ = pStart;
-  p1_ = pEnd;
-  rule_ = rule;
-  forces_ = false;
+  assign(t0, t1, pStart, pEnd, rule, false);
 }
 
 void InterfacePressure::setForceWindow(double t0, double t1, const std::vector<double>& fStart,
                                        const std::vector<double>& fEnd, WindowLoad rule) {
   if (fStart.size() != 3 * nodes_.size() || fEnd.size() != 3 * nodes_.size())
     throw std::invalid_argument("interface forces: three values per interface node expected");
+  assign(t0, t1, fStart, fEnd, rule, true);
+}
+
+void InterfacePressure::assign(double t0, double t1, const std::vector<double>& start,
+                               const std::vector<double>& end, WindowLoad rule, bool forces) {
   t0_ = t0;
   t1_ = t1;
-  p0_ = fStart;
-  p1_ = fEnd;
+  p0_ = start;
+  p1_ = end;
   rule_ = rule;
-  forces_ = true;
+  forces_ = forces;
 }
 
 double InterfacePressure::windowFraction(double time) const {

@@ -46,6 +46,8 @@ class InterfacePressure final : public Effect {
 
  private:
   double windowFraction(double time) const;
+  void assign(double t0, double t1, const std::vector<double>& start, const std::vector<double>& end,
+              WindowLoad rule, bool forces);
 
   std::vector<int> conn_;        ///< triangles as local interface node indices
   std::vector<int> nodes_;       ///< interface node -> model node

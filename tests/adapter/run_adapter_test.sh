@@ -56,19 +56,8 @@ rows = list(csv.DictReader(open(files[-1])))
 print(rows[-1][sys.argv[2]])
 PY
 }
-check_conservation() { python3 - "$1" <<'PY' || fail "fluid and structure interface forces differ"
-import csv, sys
-rows = list(csv.DictReader(open(sys.argv[1] + "/structure/coupling.csv")))
-worst = 0.0
-for r in rows:
-    f = [float(r[k + "_fluid"]) for k in ("Fx", "Fy", "Fz")]
-    s = [float(r[k + "_structure"]) for k in ("Fx", "Fy", "Fz")]
-    scale = max(abs(v) for v in f)
-    if scale > 0:
-        worst = max(worst, max(abs(a - b) for a, b in zip(f, s)) / scale)
-print(f"{len(rows)} windows, largest relative difference of the interface force fluid/structure {worst:.2e}")
-sys.exit(0 if rows and worst < 1e-6 else 1)
-PY
+check_conservation() {
+  python3 "$here/../../cases/coupled/summarize.py" --force-check "$1" || fail "fluid and structure interface forces differ"
 }
 # close A B TOL: |A - B| <= TOL * max(|A|, |B|)
 close() { python3 -c "import sys; a, b, t = map(float, sys.argv[1:]); print(f'{a:.9g} vs {b:.9g}: relative difference {abs(a-b)/max(abs(a),abs(b)):.2e} (limit {t:g})'); sys.exit(0 if abs(a-b) <= t*max(abs(a),abs(b)) else 1)" "$@"; }

@@ -8,6 +8,7 @@
 #include "coupling/mapping/L2Projection.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
 #include "fsiCouplingFunctionObject.H"
+#include "fsiFloatingPointTraps.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
 #include "fvcGrad.H"
 #include "movingWallVelocityFvPatchVectorField.H"
@@ -173,6 +174,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   const fileName outDir = time_.globalPath() / "structure";
   std::map<std::string, std::vector<double>> restartArrays;
   if (Pstream::master()) {
+    const fsiFloatingPointTrapsOff noTraps;
     try {
       structure_ = std::make_unique<fsi::coupling::StructureParticipant>(std::string(scene_));
     } catch (const std::exception& e) {
@@ -330,6 +332,12 @@ void fsiCoupling::writeStructure() {
   structure_->writeState(std::string(stateFile(time_.timePath())), arrays);
 }
 
+void fsiCoupling::keepLastStableState() {
+  structure_->restoreCheckpoint();
+  structure_->writeResults();
+  structure_->writeState(std::string(time_.globalPath() / "structure" / "last_stable_state.h5"));
+}
+
 void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads) {
   if (!Pstream::master()) return;
   vector structureTotal = Zero;
@@ -386,8 +394,19 @@ bool fsiCoupling::execute() {
   const auto t1 = Clock::now();
   label repeat = 0, finished = 0;
   if (Pstream::master()) {
+    const fsiFloatingPointTrapsOff noTraps;
     try {
       scheme_->advance(Eigen::Map<const Eigen::VectorXd>(loads.data(), Eigen::Index(loads.size())));
+    } catch (const fsi::coupling::StructureUnstable& e) {
+      keepLastStableState();
+      FatalErrorInFunction << "fsiCoupling: t = " << time_.value() << " s, window " << scheme_->window()
+                           << ", iteration " << scheme_->iteration()
+                           << ": the structure became unstable: " << e.what() << nl
+                           << "The structure's last stable state (start of the window) is in "
+                           << time_.globalPath() / "structure" / "last_stable_state.h5"
+                           << " and the last frame of structure/results.h5. A light, soft structure "
+                           << "strongly coupled to the flow may need a smaller step: lower `time: {safety: "
+                           << "...}` in the scene or raise `subcycles`." << exit(FatalError);
     } catch (const std::exception& e) {
       FatalErrorInFunction << "fsiCoupling: t = " << time_.value() << " s: " << e.what() << exit(FatalError);
     }

@@ -5,6 +5,7 @@
 
 #include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/run/InstabilityDiagnosis.hpp"
 
 namespace fsi::coupling {
 
@@ -73,7 +74,9 @@ void StructureParticipant::advance(double dt) {
                                   : scenarioMaxDt);
   while (cd_->time() < t1 * (1 - 1e-14) - 1e-300) {
     if (!cd_->step(t1, false))
-      throw std::runtime_error("structure became unstable at t = " + std::to_string(cd_->time()) + " s");
+      throw StructureUnstable(structure::diagnoseInstability(scene_, *cd_, checkpoint_.steps,
+                                                             checkpoint_.time,
+                                                             /*nonFinite=*/true));
   }
 }
 

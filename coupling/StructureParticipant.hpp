@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,13 @@
 #include "structure/scene/Scene.hpp"
 
 namespace fsi::coupling {
+
+/// advance() found a non-finite state; what() is the diagnosis (structure/run/InstabilityDiagnosis). The
+/// checkpoint (start of the window) still holds the last stable state: restoreCheckpoint() returns to it.
+class StructureUnstable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 class StructureParticipant final : public StructureSolver {
  public:
@@ -48,7 +56,8 @@ class StructureParticipant final : public StructureSolver {
   /// At least this many structural steps per fluid step (1 = as the stability limit allows). Used to show
   /// that subcycling does not change a coupled answer beyond the time-discretisation error.
   void setMinSubcycles(int n) { minSubcycles_ = std::max(1, n); }
-  /// Integrates [t, t + dt] with the explicit solver (subcycling) under the interpolated pressure.
+  /// Integrates [t, t + dt] with the explicit solver (subcycling) under the interpolated pressure; throws
+  /// StructureUnstable (with a diagnosis) if the state becomes non-finite.
   void advance(double dt);
 
   std::vector<double> interfaceDisplacement() const;  ///< 3 per interface node [m]

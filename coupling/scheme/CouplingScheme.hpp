@@ -100,6 +100,7 @@ class CouplingScheme {
   double time() const { return t_; }  ///< start of the current window
   double timeWindowSize() const { return config_.timeWindowSize; }
   int iteration() const { return iteration_; }  ///< 0-based iteration within the current window
+  int window() const { return window_; }        ///< 0-based index of the current window
 
   const WindowReport& lastWindow() const { return last_; }
   const CouplingStatistics& statistics() const { return stats_; }

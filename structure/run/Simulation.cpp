@@ -12,6 +12,7 @@
 #include "structure/io/ResultsWriter.hpp"
 #include "structure/io/SceneFrames.hpp"
 #include "structure/io/StateFile.hpp"
+#include "structure/run/InstabilityDiagnosis.hpp"
 
 namespace fsi::structure {
 
@@ -156,56 +157,6 @@ struct Snapshot {
   double time = 0, dt = 0;
   long steps = 0;
 };
-
-std::string diagnose(const Scene& scene, const CentralDifference& cd, const Snapshot& good, bool nonFinite) {
-  const Model& m = *scene.model;
-  const Nodes& N = m.nodes;
-  std::string s = fmt::format("instability at step {} (t = {:.6g} s): ", cd.steps(), cd.time());
-  int firstBad = -1, badCount = 0, fastest = 0;
-  double vmax = -1;
-  for (int i = 0; i < N.count; ++i) {
-    bool finite = true;
-    double v2 = 0;
-    for (int k = 0; k < 3; ++k) {
-      finite = finite && std::isfinite(N.x[3 * i + k]) && std::isfinite(N.v[3 * i + k]);
-      v2 += N.v[3 * i + k] * N.v[3 * i + k];
-    }
-    if (!finite) {
-      if (firstBad < 0) firstBad = i;
-      ++badCount;
-    } else if (v2 > vmax) {
-      vmax = v2, fastest = i;
-    }
-  }
-  if (nonFinite && firstBad >= 0) {
-    s += fmt::format("non-finite state at {} node(s), first {}. ", badCount, m.describeNode(firstBad));
-  } else {
-    s += fmt::format("energy balance error {:.3g} exceeds the tolerance; fastest {} (|v| = {:.3g} m/s). ",
-                     cd.energy().balanceError(), m.describeNode(fastest), std::sqrt(vmax));
-  }
-  if (scene.membrane) {
-    MembraneStressField f;
-    scene.membrane->evaluate(N.x.data(), f);
-    int worst = -1;
-    double worstStrain = -1;
-    for (int e = 0; e < m.membranes.count; ++e) {
-      const double es = f.majorStrain[e];
-      if (!std::isfinite(es)) {
-        worst = e;
-        break;
-      }
-      if (es > worstStrain) worstStrain = es, worst = e;
-    }
-    if (worst >= 0)
-      s += fmt::format("Most strained element: {} (major strain {:.3g}). ", m.describeTriangle(worst),
-                       f.majorStrain[worst]);
-  }
-  s += fmt::format(
-      "Step used {:.4g} s, element stability estimate {:.4g} s. Last stable state: step {} "
-      "(t = {:.6g} s).",
-      cd.lastDt(), cd.stableDt(), good.steps, good.time);
-  return s;
-}
 
 }  // namespace
 
@@ -443,7 +394,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   const long steps = cd.steps();
 
   if (result.reason == StopReason::Unstable) {
-    result.diagnosis = diagnose(scene, cd, good, nonFinite);
+    result.diagnosis = diagnoseInstability(scene, cd, good.steps, good.time, nonFinite);
     // Keep the last good state: on disk as a restartable state and as the last frame of the results.
     StateSnapshot snap;
     snap.time = good.time;

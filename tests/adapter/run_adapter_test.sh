@@ -7,6 +7,8 @@
 #   missing-library : without the library the interface boundary condition is a hard error
 #   no-coupling     : the boundary condition without the fsiCoupling object stops at the first mesh motion
 #   missing-bc      : U on the interface without movingWallVelocity is refused at start-up
+#   unstable        : a structure stepped above its stability limit stops the run with the structure's
+#                     diagnosis (not OpenFOAM's floating-point trap) and keeps its last stable state
 #   coupled         : staggered coupled run: the bottom rises, fluid and structure interface forces agree
 #                     (< 1e-6 relative, every window), results and restart state are written
 #   checkpoint      : implicit coupling with every pass repeated from its checkpoint: the repeat is exact
@@ -121,6 +123,19 @@ PY
     solve "$work/case"
     [ $rc -ne 0 ] || fail "U without movingWallVelocity on the interface must be refused"
     grep -q "U on patch bottom is of type noSlip; a moving interface needs movingWallVelocity" "$log" || fail "no clear message"
+    ;;
+  unstable)
+    prepare "$work/case"
+    # 1e7 times stiffer: critical step about 1.1e-5 s, forced to 1e-4 s (100 steps per window: overflow)
+    sed -i 's/young: 250,/young: 2.5e9,/' "$work/case/structure.yaml"
+    echo "time: {fixed_dt: 0.0001}" >> "$work/case/structure.yaml"
+    solve "$work/case"
+    [ $rc -ne 0 ] || fail "an unstable structure must stop the run"
+    grep -q "the structure became unstable: instability at step" "$log" || fail "no diagnosis from the structure"
+    grep -q "Last stable state: step" "$log" || fail "the diagnosis does not name the last stable state"
+    ! grep -q "sigFpe" "$log" || fail "the run died on a floating-point trap instead of the diagnosis"
+    /usr/bin/python3 -c "import h5py, sys; f = h5py.File(sys.argv[1]); print('last stable state at t =', f.attrs['time'] if 'time' in f.attrs else list(f.keys()))" \
+      "$work/case/structure/last_stable_state.h5" || fail "no readable structure/last_stable_state.h5"
     ;;
   coupled)
     prepare "$work/case"

@@ -65,6 +65,53 @@ def measure(t, v, spec):
     raise ValueError(f"unknown measure {kind}")
 
 
+def last_rows(path):
+    """Rows of an OpenFOAM function-object .dat file as {time: [numbers]}: vectors are flattened, and a time
+    written twice (a repeated coupling iteration) keeps its last row."""
+    rows = {}
+    for line in open(path):
+        if line.startswith("#") or not line.strip():
+            continue
+        nums = [float(x) for x in line.replace("(", " ").replace(")", " ").split()]
+        rows[nums[0]] = nums[1:]
+    return rows
+
+
+def momentum_balance(case, rows, spec):
+    """The membrane's load from the channel's momentum balance, against the load the structure received.
+
+    For a steady flow between slip walls, the force of the fluid on everything inside the channel is
+    F = -rho * sum(phi U) over inlet and outlet - (pressure + viscous force on inlet and outlet). After the
+    inflow ramp the momentum in the channel does not change (incompressible, fixed inflow), so only the
+    membrane's own motion is left out. Compared at the last time both files hold, component `component`."""
+    pp = os.path.join(case, "postProcessing")
+    k = "xyz".index(spec.get("component", "z"))
+    force = last_rows(os.path.join(pp, spec["force"], "0", "force.dat"))
+    flux = [last_rows(os.path.join(pp, name, "0", "surfaceFieldValue.dat")) for name in spec["flux"]]
+    times = sorted(set(force).intersection(*flux))
+    structure = {float(r["time"]): float(r["F" + "xyz"[k] + "_structure"]) for r in rows}
+    times = [t for t in times if t in structure]
+    if not times:
+        return None, None, None
+    t = times[-1]
+    channel = -spec.get("rho", 1.0) * sum(f[t][k] for f in flux) - force[t][k]
+    return t, structure[t], channel
+
+
+def mesh_quality(case, spec):
+    """checkMesh of the last time (log.checkMesh): 'Mesh OK.' and the largest non-orthogonality/skewness."""
+    log = open(os.path.join(case, "log.checkMesh")).read()
+    out = {"mesh_ok": "Mesh OK." in log}
+    for key, pattern in (("max_non_orthogonality", "Mesh non-orthogonality Max:"),
+                         ("max_skewness", "Max skewness =")):
+        line = next((l for l in log.splitlines() if pattern in l), None)
+        out[key] = float(line.split(pattern)[1].split()[0]) if line else None
+    out["within"] = out["mesh_ok"] and all(
+        out[k] is not None and out[k] <= spec[k] for k in ("max_non_orthogonality", "max_skewness"))
+    out["limits"] = {k: spec[k] for k in ("max_non_orthogonality", "max_skewness")}
+    return out
+
+
 def main():
     if sys.argv[1] == "--force-check":
         return force_check(sys.argv[2])
@@ -78,7 +125,7 @@ def main():
     rows, t, v = history(case, ref["probe"])
     out["interface_force_relative_difference"] = force_difference(rows)
     out["end_time"] = t[-1] if t else None
-    for name, spec in ref["quantities"].items():
+    for name, spec in ref.get("quantities", {}).items():
         when, value = measure(t, v, spec)
         entry = {"value": value, "time": when, "published": spec["published"]}
         pub = [p["value"] for p in spec["published"]]
@@ -91,6 +138,18 @@ def main():
         if entry["check"]:
             out["all_checks_within_tolerance"] &= entry["within"]
         out["results"][name] = entry
+    checks = ref.get("checks", {})
+    if "momentum_balance" in checks:
+        spec = checks["momentum_balance"]
+        when, structure, channel = momentum_balance(case, rows, spec)
+        rel = abs(structure - channel) / abs(channel) if channel else None
+        out["momentum_balance"] = {"time": when, "structure": structure, "channel": channel,
+                                   "relative_difference": rel, "tolerance": spec["tolerance"],
+                                   "within": rel is not None and rel <= spec["tolerance"]}
+        out["all_checks_within_tolerance"] &= out["momentum_balance"]["within"]
+    if "mesh_quality" in checks:
+        out["mesh_quality"] = mesh_quality(case, checks["mesh_quality"])
+        out["all_checks_within_tolerance"] &= out["mesh_quality"]["within"]
     json.dump(out, open(os.path.join(case, "summary.json"), "w"), indent=2)
     print(json.dumps({k: (v["value"], v["time"], v["within"]) for k, v in out["results"].items()}))
     return 0

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs a coupled case (cases/coupled/NAME) in a scratch copy with its Allrun and checks its summary.json:
 # the run reached its end time, the interface force is the same on the fluid and structure sides (< 1e-6
-# relative, every window), and every quantity marked `check: true` in reference.yaml lies within the span
-# of the published values widened by its tolerance.
+# relative, every window), every quantity marked `check: true` in reference.yaml lies within the span
+# of the published values widened by its tolerance, and the case's physical `checks` (momentum balance,
+# mesh quality; see summarize.py) pass.
 # Usage: run_case_test.sh NAME ADAPTER_LIB_DIR WORK_DIR [END_TIME]
 set -uo pipefail
 name=$1 libdir=$2 work=$3 end=${4:-}
@@ -18,6 +19,9 @@ import json, sys
 s = json.load(open("summary.json"))
 print(json.dumps(s, indent=1))
 ok = s["interface_force_relative_difference"] < 1e-6 and s["all_checks_within_tolerance"]
+for k in ("momentum_balance", "mesh_quality"):
+    if k in s:
+        print(f"{k}: {s[k]}")
 for k, v in s["results"].items():
     print(f"{k}: {v['value']} at t = {v['time']} (accepted {v['accepted_range']}, check {v['check']}, within {v['within']})")
 sys.exit(0 if ok else 1)

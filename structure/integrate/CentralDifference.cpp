@@ -40,12 +40,14 @@ bool CentralDifference::step(double limitTime, bool monitor) {
       settings_.fixedDt > 0 ? settings_.fixedDt : std::min(settings_.safety * stable, settings_.maxDt);
   if (!(dtNext > 0) || !std::isfinite(dtNext)) dtNext = settings_.maxDt < 1e299 ? settings_.maxDt : 0.0;
   if (!(dtNext > 0)) return false;  // no element bounds the step and no maximum is set: nothing to integrate
-  // Land exactly on the limit; avoid a sliver step just before it.
+  // Land exactly on the limit in equal steps, not by shortening the last one or two: output times and
+  // coupling windows recur, and a step that changes periodically pumps energy into the modes near the
+  // stability limit (parametric resonance) although each step is stable. The step count is the same.
   const double remaining = limitTime - time_;
   if (remaining <= dtNext * (1.0 + 1e-9))
     dtNext = remaining;
-  else if (remaining < 1.5 * dtNext)
-    dtNext = 0.5 * remaining;
+  else
+    dtNext = remaining / std::ceil(remaining / (dtNext * (1.0 + 1e-9)));  // same tolerance: no extra step
   const double dtAvg = 0.5 * (dt_ + dtNext);
   const double a = settings_.massDamping;
   const double c1 = 1.0 - 0.5 * a * dtAvg;

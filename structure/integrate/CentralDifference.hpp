@@ -29,7 +29,8 @@ class CentralDifference {
   CentralDifference(Model& model, std::vector<const Effect*> effects, Constraints constraints,
                     CentralDifferenceSettings settings, double startTime = 0.0);
 
-  /// Advances one step, never past `limitTime`. `monitor` also evaluates the strain energy.
+  /// Advances one step, never past `limitTime`, which it reaches in equal steps. `monitor` also evaluates
+  /// the strain energy.
   /// Returns false if the state became non-finite (the caller diagnoses and stops).
   bool step(double limitTime, bool monitor);
 

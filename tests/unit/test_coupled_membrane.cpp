@@ -109,7 +109,9 @@ double monolithic(double addedMass, double tEnd) {
       {"materials.film.density=" + std::to_string(rho), "effects={pressure: {triangles: sheet, value: 200}}",
        "time.end=" + std::to_string(tEnd)});
   structure::RunOptions opt;
-  opt.outDir = std::string(FSI_BINARY_DIR) + "/test-output/coupled-monolithic";
+  // One folder per test: ctest runs the tests of this file in parallel processes.
+  opt.outDir = std::string(FSI_BINARY_DIR) + "/test-output/coupled-monolithic-" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name();
   opt.quiet = true;
   structure::runSimulation(sc, opt);
   const auto& N = sc.model->nodes;

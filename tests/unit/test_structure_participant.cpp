@@ -39,7 +39,8 @@ TEST(StructureParticipant, UniformInterfacePressureMatchesTheFollowerPressureEff
   structure::Scene ref = structure::loadSceneFromString(
       kDrum, "drum.yaml", {"effects.pressure={triangles: sheet, value: 200}", "time.end=0.1"});
   structure::RunOptions opt;
-  opt.outDir = std::string(FSI_BINARY_DIR) + "/test-output/participant-ref";
+  opt.outDir = std::string(FSI_BINARY_DIR) + "/test-output/participant-ref-" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name();
   opt.quiet = true;
   structure::runSimulation(ref, opt);
   const auto u = s.interfaceDisplacement();
@@ -162,7 +163,8 @@ TEST(StructureParticipant, MinimumSubcyclesAreTakenAndRestartStateRoundTrips) {
   s.setPressure(p, p);
   s.advance(1e-3);
   EXPECT_EQ(s.structuralSteps() - before, std::max(7, s.subcyclesFor(1e-3)));
-  const std::string file = std::string(FSI_BINARY_DIR) + "/test-output/participant-state.h5";
+  const std::string file = std::string(FSI_BINARY_DIR) + "/test-output/participant-state-" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".h5";
   s.writeState(file, {{"extra", {1.0, 2.0}}});
   StructureParticipant t = drum();
   const auto arrays = t.readState(file);

@@ -416,8 +416,11 @@ bool fsiCoupling::execute() {
   Pstream::scatter(repeat);
   Pstream::scatter(finished);
   const auto t2 = Clock::now();
+  if (!strayTimeDir_.empty() && isDir(strayTimeDir_)) rmDir(strayTimeDir_);
+  strayTimeDir_.clear();
   if (repeat) {
     checkpoint_->restore();
+    if (!isDir(time_.timePath())) strayTimeDir_ = time_.timePath();
   } else {
     logWindow(fluidTotal, loads);
     if (time_.writeTime() || finished) writeStructure();

@@ -15,8 +15,13 @@ cd "$work/cases/coupled/$name" || exit 1
 ./Allclean
 ./Allrun $end || { echo "FAIL: Allrun failed"; exit 1; }
 /usr/bin/python3 - <<'PY'
-import json, sys
+import glob, json, os, sys
 s = json.load(open("summary.json"))
+# every time directory is a real one (fields), none a leftover of a repeated coupling step
+stray = [d for d in glob.glob("[0-9]*") if os.path.isdir(d) and not os.path.exists(os.path.join(d, "U"))]
+if stray:
+    print("time directories without fields:", stray)
+    sys.exit(1)
 print(json.dumps(s, indent=1))
 ok = s["interface_force_relative_difference"] < 1e-6 and s["all_checks_within_tolerance"]
 for k in ("momentum_balance", "mesh_quality"):

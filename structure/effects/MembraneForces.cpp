@@ -53,23 +53,17 @@ inline void altitude2(const Kinematics& k, double& num, double& den) {
   den = std::max(l21, std::max(l31, l32));
 }
 
-// Squared smallest altitude 2A0/l_max of the reference triangle from its edge-frame data (no square root).
-inline double referenceAltitude2(const double* g) {
-  const double a0 = 1.0 / g[0], b0 = g[1], c0 = 1.0 / g[2];
-  const double l31 = b0 * b0 + c0 * c0, l32 = (a0 - b0) * (a0 - b0) + c0 * c0;
-  return (a0 * c0) * (a0 * c0) / std::max(a0 * a0, std::max(l31, l32));
-}
-
 // Stiffening of the stretched element relative to the reference one, for the stable step. In reference
 // coordinates the tangent of the first Piola stress P = F S is bounded by c11 λ1² (material part, λ1² the
 // largest eigenvalue of C) plus S1 (geometric part, the largest principal stress), so the wave speed grows
-// by sqrt(λ1² + S1/c11): (3λ²−1)/2 under the square root for a bar, 1.15 at 10 % stretch. Gershgorin bounds
-// stand in for the eigenvalues (no square root; exact for principal axes along the frame and for pure
-// shear). Never below 1: the reference step stays the bound for compressed or slack elements.
-inline double stiffening(const Kinematics& k, const double S[3], double c11) {
+// by sqrt(λ1² + S1/c11): (3λ²−1)/2 under the square root for a bar, 1.15 at 10 % stretch. S1/c11 is at most
+// (1+ν) E1 = (1+ν)(λ1²−1)/2 (taut: S1 = c11 (E1 + ν E2), E2 ≤ E1; wrinkled: S1 = Y E1, Y ≤ c11), so the
+// factor follows from C alone, off the stress's critical path; a Gershgorin bound stands in for λ1² (no
+// square root; exact for principal axes along the frame and for pure shear). Never below 1: the reference
+// step stays the bound for compressed or slack elements.
+inline double stiffening(const Kinematics& k, double a, double b) {
   const double c1 = std::max(k.C11, k.C22) + std::abs(k.C12);
-  const double s1 = std::max(0.0, std::max(S[0], S[1]) + std::abs(S[2]));
-  return std::max(1.0, c1 + s1 / c11);
+  return std::max(1.0, a * c1 - b);
 }
 
 template <bool Wrinkling>
@@ -91,6 +85,8 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
   const int* conn = el.conn.data();
   const double* geo = el.geo.data();
   const double* iws = el.invWaveSpeed.data();
+  const double* refStep2 = el.refStep2.data();
+  const double stiffA = 1.0 + 0.5 * (1.0 + blk.poisson), stiffB = 0.5 * (1.0 + blk.poisson);
   // Running minimum of Δt² = num/den kept as a fraction; one division per block instead of per element.
   double bestNum = ctx.minStableDt * ctx.minStableDt, bestDen = 1.0;
   if (!std::isfinite(bestNum)) bestNum = 1.0, bestDen = 0.0;
@@ -103,10 +99,9 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
     double S[3], w;
     stress<Wrinkling>(k, blk, S, w);
     if constexpr (Energy) energy += k.tA0 * w;
-    // Stable step from the reference altitude and the current stiffening (the current altitude grows with
-    // the stretch while the step must shrink).
-    const double h2 = referenceAltitude2(geo + MembraneTriangles::kGeo * e);
-    const double stiff = stiffening(k, S, blk.c11);
+    // Stable step from the reference one and the current stiffening (the current altitude grows with the
+    // stretch while the step must shrink).
+    const double stiff = stiffening(k, stiffA, stiffB);
     if constexpr (Viscous) {
       double aNum, aDen;
       altitude2(k, aNum, aDen);
@@ -131,12 +126,11 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
       S[1] += visc.beta * blk.c11 * (r22 + blk.poisson * r11) + bulk;
       S[2] += visc.beta * 0.5 * blk.c11 * (1.0 - blk.poisson) * r12;
       // Damped stability limit (L/c)(sqrt(1+ξ²) − ξ) with ξ = βω/2 + b1, ω = 2c/L, L = h/sqrt(stiffening).
-      const double L = std::sqrt(h2 / stiff);
+      const double L = std::sqrt(refStep2[e] / stiff) / iws[e];
       const double xi = visc.beta * c / L + visc.bulkB1;
       minDt = std::min(minDt, L * iws[e] * (std::sqrt(1.0 + xi * xi) - xi));
     } else {
-      const double num = h2 * iws[e] * iws[e];
-      if (num * bestDen < bestNum * stiff) bestNum = num, bestDen = stiff;
+      if (refStep2[e] * bestDen < bestNum * stiff) bestNum = refStep2[e], bestDen = stiff;
     }
     // Nodal forces t A0 F S ∇N_a: P = F S has columns p1 = f1 S11 + f2 S12, p2 = f1 S12 + f2 S22.
     double* F1 = f + 3 * n[0];

@@ -42,6 +42,7 @@ MassScalingReport applyMassScaling(Model& model, double targetDt, double safety)
       for (int k = 0; k < 3; ++k) N.mass[T.conn[3 * e + k]] += extra;
       r.addedMass += 3.0 * extra;
       T.invWaveSpeed[e] *= std::sqrt(s);
+      T.refStep2[e] *= s;
       ++r.scaledElements;
     }
   Cables& C = model.cables;

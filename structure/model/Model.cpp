@@ -169,6 +169,7 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
   T.conn.resize(3 * T.count);
   T.geo.resize(MembraneTriangles::kGeo * T.count);
   T.invWaveSpeed.resize(T.count);
+  T.refStep2.resize(T.count);
   T.tag.resize(T.count);
   T.mesh.resize(T.count);
   for (auto& mm : model.meshes)
@@ -208,6 +209,9 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     g[2] = 1.0 / c0;
     g[3] = mat.thickness * area;
     T.invWaveSpeed[e] = 1.0 / membraneWaveSpeed(mat);
+    const double l32 = std::sqrt((a0 - b0) * (a0 - b0) + c0 * c0);
+    const double h0 = a0 * c0 / std::max({a0, l31, l32});
+    T.refStep2[e] = h0 * T.invWaveSpeed[e] * h0 * T.invWaveSpeed[e];
     for (int k = 0; k < 3; ++k) N.mass[n[k]] += mat.density * mat.thickness * area / 3.0;
     if (T.blocks.empty() || T.blocks.back().material != r.material) {
       MembraneBlock b;

@@ -45,6 +45,7 @@ struct MembraneTriangles {
   std::vector<int> conn;             ///< 3 node indices per element
   std::vector<double> geo;           ///< 4 per element: 1/a0, b0, 1/c0, thickness*A0
   std::vector<double> invWaveSpeed;  ///< 1/c_d per element (changes with mass scaling)
+  std::vector<double> refStep2;      ///< (h0/c_d)²: squared reference stable step, h0 the smallest altitude
   std::vector<MembraneBlock> blocks;
   std::vector<long> tag;
   std::vector<int> mesh;

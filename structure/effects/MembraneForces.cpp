@@ -125,10 +125,11 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
       S[0] += visc.beta * blk.c11 * (r11 + blk.poisson * r22) + bulk;
       S[1] += visc.beta * blk.c11 * (r22 + blk.poisson * r11) + bulk;
       S[2] += visc.beta * 0.5 * blk.c11 * (1.0 - blk.poisson) * r12;
-      // Damped stability limit (L/c)(sqrt(1+ξ²) − ξ) with ξ = βω/2 + b1, ω = 2c/L, L = h/sqrt(stiffening).
-      const double L = std::sqrt(refStep2[e] / stiff) / iws[e];
-      const double xi = visc.beta * c / L + visc.bulkB1;
-      minDt = std::min(minDt, L * iws[e] * (std::sqrt(1.0 + xi * xi) - xi));
+      // Damped stability limit (L/c)(sqrt(1+ξ²) − ξ) with ξ = βω/2 + b1, ω = 2c/L, L/c = h0/(c
+      // sqrt(stiffening)).
+      const double dt0 = std::sqrt(refStep2[e] / stiff);
+      const double xi = visc.beta / dt0 + visc.bulkB1;
+      minDt = std::min(minDt, dt0 * (std::sqrt(1.0 + xi * xi) - xi));
     } else {
       if (refStep2[e] * bestDen < bestNum * stiff) bestNum = refStep2[e], bestDen = stiff;
     }

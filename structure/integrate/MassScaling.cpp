@@ -6,21 +6,11 @@
 
 namespace fsi::structure {
 
-namespace {
-// Smallest altitude 2A/l_max of a reference triangle, from its stored edge-frame geometry.
-double referenceAltitude(const double* g) {
-  const double a0 = 1.0 / g[0], b0 = g[1], c0 = 1.0 / g[2];
-  const double l31 = std::sqrt(b0 * b0 + c0 * c0);
-  const double l32 = std::sqrt((b0 - a0) * (b0 - a0) + c0 * c0);
-  return a0 * c0 / std::max({a0, l31, l32});
-}
-}  // namespace
-
 double referenceStableDt(const Model& model) {
   double dt = std::numeric_limits<double>::infinity();
   const MembraneTriangles& T = model.membranes;
   for (int e = 0; e < T.count; ++e)
-    dt = std::min(dt, referenceAltitude(&T.geo[MembraneTriangles::kGeo * e]) * T.invWaveSpeed[e]);
+    dt = std::min(dt, std::sqrt(T.refStep2[e]));  // smallest reference altitude / c
   const Cables& C = model.cables;
   for (int e = 0; e < C.count; ++e) dt = std::min(dt, C.restLength[e] * C.invWaveSpeed[e]);
   return dt;
@@ -35,7 +25,7 @@ MassScalingReport applyMassScaling(Model& model, double targetDt, double safety)
   for (const auto& b : T.blocks)
     for (int e = b.begin; e < b.end; ++e) {
       const double* g = &T.geo[MembraneTriangles::kGeo * e];
-      const double dt = referenceAltitude(g) * T.invWaveSpeed[e];
+      const double dt = std::sqrt(T.refStep2[e]);
       if (dt >= need) continue;
       const double s = (need / dt) * (need / dt);               // c ∝ ρ^-1/2
       const double extra = (s - 1.0) * b.density * g[3] / 3.0;  // g[3] = t A0

@@ -1,4 +1,4 @@
-# parachute-fsi environment, like OpenFOAM's etc/bashrc. Source it (bash or zsh), do not run it:
+# parachute-fsi environment, like OpenFOAM's etc/bashrc. Source it from bash, do not run it:
 #     . <build or install prefix>/share/fsi/fsi-env.sh
 # It finds its own folder, so the build tree (build/share/fsi/) and any `cmake --install --prefix P`
 # (P/share/fsi/) work alike, and sets:
@@ -7,15 +7,11 @@
 #   FSI_SHARE_DIR     = <root>/share/fsi   case-functions.sh and summarize.py, used by the cases' Allrun
 #   WM_PROJECT_DIR    = /usr/share/openfoam unless already set (Debian's OpenFOAM v1912 finds its etc/ there)
 # Sourcing it twice adds nothing twice.
-if [ -n "${BASH_SOURCE:-}" ]; then
-  _fsi_env_file=${BASH_SOURCE[0]}
-elif [ -n "${ZSH_VERSION:-}" ]; then
-  # shellcheck disable=SC2296  # zsh: the path of the file being sourced
-  _fsi_env_file=${(%):-%x}
-else
-  echo "fsi-env.sh: source it from bash or zsh (. path/to/fsi-env.sh)" >&2
+if [ -z "${BASH_SOURCE:-}" ]; then
+  echo "fsi-env.sh: source it from bash (. path/to/fsi-env.sh)" >&2
   return 2 2> /dev/null || exit 2
 fi
+_fsi_env_file=${BASH_SOURCE[0]}
 FSI_SHARE_DIR=$(cd "$(dirname "$_fsi_env_file")" && pwd)
 export FSI_SHARE_DIR
 _fsi_root=$(cd "$FSI_SHARE_DIR/../.." && pwd)

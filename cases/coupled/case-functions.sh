@@ -5,7 +5,7 @@
 # Allrun [-continue] [-parallel] [END_TIME]
 #   END_TIME   end time of this run (default: the case's system/controlDict); written to the untracked
 #              system/controlDict.override, which controlDict includes last (#sinclude), so no tracked
-#              file is edited
+#              file is edited; with a write interval that makes END_TIME a write time if it is not one
 #   -continue  go on from the latest time directory (controlDict has `startFrom latestTime`; fluid and
 #              structure restart together) to END_TIME or the case's end time
 #   -parallel  decomposePar, mpirun -np N pimpleFoam -parallel (N: system/decomposeParDict), reconstructPar
@@ -169,7 +169,7 @@ runApplication() {
 # come every window, so they are shown at most every 2 s of wall time (and the last one at the end);
 # other lines (set-up, warnings, non-converged windows, totals) are shown as they come.
 fsiProgress() {
-  local line pending= last=-10
+  local line pending='' last=-10
   while IFS= read -r line; do
     case $line in
       *"NOT CONVERGED"* | *[Ww]arning* | *[Ee]rror*) echo "$line" ;;

@@ -174,9 +174,10 @@ def report(out):
         pub = [p["value"] for p in e["published"]]
         verdict = "PASS" if e["within"] else "outside" + ("" if e["check"] else " (reported, not a check)")
         if not e["complete"]:
-            verdict = f"measured only to t = {number(out['end_time'])} s of its window"
-        lines.append(f"  {name:<14} {number(e['value'])} at t = {number(e['time'])} s; published "
-                     f"{number(min(pub))} .. {number(max(pub))}, accepted {number(lo)} .. {number(hi)}: {verdict}")
+            verdict += f" (its window ends at t = {number(e['window_end'])} s, the run at {number(out['end_time'])} s)"
+        published = number(pub[0]) if min(pub) == max(pub) else f"{number(min(pub))} .. {number(max(pub))}"
+        lines.append(f"  {name:<14} {number(e['value'])} at t = {number(e['time'])} s; published {published}, "
+                     f"accepted {number(lo)} .. {number(hi)}: {verdict}")
     if "momentum_balance" in out:
         m = out["momentum_balance"]
         lines.append(f"  momentum balance at t = {number(m['time'])} s: structure load {number(m['structure'])}, "
@@ -226,6 +227,8 @@ def main():
         entry["check"] = bool(spec.get("check", False))
         # a run that ends inside the measuring window (a short test run) measured only part of it
         entry["complete"] = bool(t) and t[-1] >= spec.get("to", -1e300)
+        if not entry["complete"]:
+            entry["window_end"] = spec.get("to")
         out["all_within_tolerance"] &= entry["within"]
         if entry["check"]:
             out["all_checks_within_tolerance"] &= entry["within"]

@@ -4,7 +4,8 @@
 # coupled.<case> tests. Modes:
 #   install           cmake --install into WORK/prefix; a case copied to WORK/run refuses to start with nothing
 #                     sourced (exit 2, a message naming fsi-env.sh), runs to its end after
-#                     `. WORK/prefix/share/fsi/fsi-env.sh` (progress on the console, summary.json, CASE.foam),
+#                     `. WORK/prefix/share/fsi/fsi-env.sh` (progress on the console, summary.json, CASE.foam,
+#                     plots/*.png when the fsi command has `plot`, else a note),
 #                     and runs with only WORK/prefix/bin on PATH
 #   continue          (the copy of `install`) ./Allrun again is refused with exit 2 and a one-line message and
 #                     leaves summary.json alone; -continue without a later end time is refused; -continue END
@@ -72,6 +73,11 @@ case "$mode" in
     ! grep -q '^{' ../allrun.out || fail "raw JSON on the console"
     reached . "$end"
     [ -f "$name.foam" ] || fail "no $name.foam for ParaView"
+    if "$work/prefix/bin/fsi" --help | grep -qE '^ +plot '; then
+      ls plots/*.png > /dev/null 2>&1 || fail "fsi has a plot command but Allrun made no plots/*.png"
+    else
+      grep -q "no plots (this fsi command has no 'plot')" ../allrun.out || fail "no note that plots were skipped"
+    fi
     [ -s log.pimpleFoam ] && grep -q "^Time = " log.pimpleFoam || fail "the solver's full output is not in log.pimpleFoam"
     # only the install's bin/ on PATH, nothing sourced
     cd "$work/run/$name-path" || exit 1

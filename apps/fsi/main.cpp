@@ -1,12 +1,11 @@
 // fsi: the command-line front end.
 //   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet]
 //   fsi validate CASE_DIR [--out DIR]   runs the checks in CASE_DIR/reference.yaml against their references
-//   fsi map-check SRC DST [--tolerance T] [--json FILE] [--set key=value]   checks the projections between
-//   two
-//                          interface meshes (Gmsh file, OpenFOAM patch or a structure scene's coupling
-//                          interface)
-//   fsi plot RUN_DIR [--out DIR] [--color auto|stress|displacement]   PNG plots of a run
-//   (share/fsi/fsi_plot.py)
+//   fsi map-check SRC DST [--tolerance T] [--json FILE] [--set key=value]
+//                          checks the projections between two interface meshes (Gmsh file, OpenFOAM patch
+//                          or a structure scene's coupling interface)
+//   fsi plot RUN_DIR [--out DIR] [--color auto|stress|displacement]
+//                          PNG plots of a run (share/fsi/fsi_plot.py)
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -222,7 +221,13 @@ int main(int argc, char** argv) {
                    "displacement")
       ->check(CLI::IsMember({"auto", "stress", "displacement"}));
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version print and succeed; any other command-line error is bad input: exit code 2 (CLI11
+    // would return its own codes, 105 and up).
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   try {
     if (*run) return runCommand(scenePath, outDir, sets, quiet);
     if (*validate) return validateCommand(caseDir, valOut, quiet);

@@ -77,7 +77,11 @@ def series(index, file):
 
 
 def load_index(plots_dir):
-    with open(os.path.join(plots_dir, "index.json")) as f:
+    path = os.path.join(plots_dir, "index.json")
+    if not os.path.isfile(path):
+        check(False, f"{path} not written")
+        return {"kind": None, "plots": []}
+    with open(path) as f:
         return json.load(f)
 
 
@@ -89,6 +93,8 @@ def test_structure():
     plots = os.path.join(run_dir, "plots")
     index = load_index(plots)
     check(index["kind"] == "structure", f"kind {index['kind']}")
+    if rc != 0:
+        return
     check_pngs(plots, index, ["energy.png", "probes.png", "structure.png"])
     with h5py.File(os.path.join(run_dir, "results.h5"), "r") as h5:
         energy_rows = len(h5["tables/energy/time"])
@@ -119,7 +125,7 @@ def test_structure():
     colour = next(x for x in index2["plots"] if x["file"] == "structure.png")["color"]
     check(colour == "displacement magnitude", f"--color displacement gave {colour}")
     rc, so, se = run("plot", run_dir, "--color", "pink")
-    check(rc != 0 and "pink" in se, f"--color pink: exit {rc}, {se}")
+    check(rc == 2 and "pink" in se, f"--color pink: exit {rc}, {se}")
 
 
 def test_relaxation():
@@ -221,6 +227,13 @@ def test_errors():
         f.write("not hdf5")
     rc, so, se = run("plot", bad)
     check(rc == 2 and os.path.join(bad, "results.h5") in se and "HDF5" in se, f"not HDF5: exit {rc}, {se}")
+    # An fsi without its share/fsi/fsi_plot.py (a partial installation) says where it looked.
+    lonely = os.path.join(WORK, "lonely", "bin")
+    os.makedirs(lonely)
+    shutil.copy(FSI, lonely)
+    p = subprocess.run([os.path.join(lonely, os.path.basename(FSI)), "plot", empty], capture_output=True, text=True)
+    expected = os.path.join(WORK, "lonely", "share", "fsi", "fsi_plot.py")
+    check(p.returncode == 1 and expected in p.stderr, f"without the script: exit {p.returncode}, {p.stderr}")
 
 
 if __name__ == "__main__":

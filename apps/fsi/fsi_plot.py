@@ -417,7 +417,8 @@ def plot_structure_run(run_dir, out_dir, color):
 def read_coupling_csv(path):
     """Header, rows (float array) and restarts [(time, note)] of coupling.csv.
 
-    Lines starting with '#' are notes (a restart); a repeated header line is skipped. When the times stop
+    Lines starting with '#' are comments; one that mentions "restart" marks a restart (at the time it states,
+    else at the last row before it). A repeated header line is skipped. When the times stop
     increasing (a restart from an earlier time directory), the rows from that time on are replaced by the
     new ones, so each window appears once, as last computed.
     """
@@ -433,7 +434,7 @@ def read_coupling_csv(path):
         if not line:
             continue
         if line.startswith("#"):
-            if header is not None:
+            if "restart" in line.lower():
                 pending = line.lstrip("#").strip()
             continue
         fields = [s.strip() for s in line.split(",")]
@@ -478,8 +479,8 @@ def _is_float(s):
 
 
 def _note_time(note, fallback):
-    """The restart time a note states ('t = 0.6', 'time 0.6', 'from 0.6'), else the fallback."""
-    m = re.search(r"(?:\bt\b|\btime\b|\bfrom\b)\s*[=:]?\s*([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)", note)
+    """The restart time a note states ('t = 0.6', 'time 0.6', 'at 0.6', 'from 0.6'), else the fallback."""
+    m = re.search(r"(?:\bt\b|\btime\b|\bat\b|\bfrom\b)\s*[=:]?\s*([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)", note)
     return float(m.group(1)) if m else fallback
 
 

@@ -124,6 +124,16 @@ def test_structure():
     check_pngs(other, index2, ["energy.png", "probes.png", "structure.png"])
     colour = next(x for x in index2["plots"] if x["file"] == "structure.png")["color"]
     check(colour == "displacement magnitude", f"--color displacement gave {colour}")
+    # A killed run has frames but no tables (they are written at its end): the picture only, and a warning.
+    killed = os.path.join(WORK, "killed")
+    os.makedirs(killed)
+    shutil.copy(os.path.join(run_dir, "results.h5"), killed)
+    with h5py.File(os.path.join(killed, "results.h5"), "a") as h5:
+        del h5["tables"]
+    rc, so, se = run("plot", killed)
+    check(rc == 0 and "no /tables/energy" in se and "summary.json not found" in se, f"killed run: exit {rc}, {se}")
+    check([p["file"] for p in load_index(os.path.join(killed, "plots"))["plots"]] == ["structure.png"],
+          "killed run: the picture only")
     rc, so, se = run("plot", run_dir, "--color", "pink")
     check(rc == 2 and "pink" in se, f"--color pink: exit {rc}, {se}")
 
@@ -163,8 +173,8 @@ def test_coupled():
     for k in range(7, 16):
         rows.append(f"{0.1 * k:.12g},{40 if k == 9 else 2},{0 if k == 9 else 1},1e-3,{k},1,{-k},{k},1,{-k},"
                     f"{0.02 * k},{-2 * k}")
-    with open(os.path.join(case, "structure", "coupling.csv"), "w") as f:
-        f.write(header + "\n" + "\n".join(rows) + "\n")
+    with open(os.path.join(case, "structure", "coupling.csv"), "w") as f:  # other comments are just skipped
+        f.write("# coupling log\n" + header + "\n# forces in N\n" + "\n".join(rows) + "\n")
     with open(os.path.join(case, "structure", "timing.json"), "w") as f:
         json.dump({"wall_seconds": 12.5, "windows": 15, "mean_iterations": 3.2}, f)
     rc, so, se = run("plot", case)
@@ -187,6 +197,13 @@ def test_coupled():
     with h5py.File(os.path.join(case, "structure", "results.h5"), "r") as h5:
         triangles = h5["mesh/triangles"].shape[0]
     check(series(index, "structure.png").get("triangles") == triangles, "structure picture triangles")
+    # A log cut short in the middle of a line (a killed run): that line is skipped with a warning.
+    with open(os.path.join(case, "structure", "coupling.csv"), "a") as f:
+        f.write("1.6,2,1,1e-3,16")
+    rc, so, se = run("plot", case, "--out", os.path.join(WORK, "cut"))
+    check(rc == 0 and "coupling.csv:25: incomplete last line" in se, f"cut log: exit {rc}, {se}")
+    check(series(load_index(os.path.join(WORK, "cut")), "iterations.png").get("iterations") == windows,
+          "cut log: the incomplete line is not plotted")
     # A coupled case without the structure results still gets its time series (and says what is missing).
     os.remove(os.path.join(case, "structure", "results.h5"))
     rc, so, se = run("plot", case, "--out", os.path.join(WORK, "no-h5"))

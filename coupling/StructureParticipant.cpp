@@ -1,8 +1,8 @@
 #include "coupling/StructureParticipant.hpp"
 
 #include <cmath>
-#include <unordered_map>
 
+#include "coupling/interface/SceneInterface.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
@@ -24,18 +24,9 @@ StructureParticipant::StructureParticipant(Scene scene) : scene_(std::move(scene
                      ": a coupled structure runs explicit dynamics (no `solver` section)");
   cd_ = std::make_unique<structure::CentralDifference>(*scene_.model, scene_.effectList(), scene_.constraints,
                                                        scene_.time.integrator);
-  // Interface mesh: the pressure effect's nodes and triangles, in reference coordinates.
-  const structure::Nodes& N = scene_.model->nodes;
+  mesh_ =
+      sceneInterface(scene_);  // reference coordinates, points in the order of the pressure effect's nodes
   const auto& nodes = scene_.interfacePressure->nodes();
-  std::unordered_map<int, int> local;
-  mesh_.name = "structure";
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    local[nodes[i]] = int(i);
-    mesh_.points.push_back({N.X[3 * nodes[i]], N.X[3 * nodes[i] + 1], N.X[3 * nodes[i] + 2]});
-  }
-  const auto& tris = scene_.interfacePressure->triangles();
-  for (std::size_t e = 0; e + 2 < tris.size(); e += 3)
-    mesh_.addFace({local.at(tris[e]), local.at(tris[e + 1]), local.at(tris[e + 2])});
   loadStart_.assign(nodes.size(), 0.0);
   loadEnd_.assign(nodes.size(), 0.0);
   cd_->evaluateForces(false);

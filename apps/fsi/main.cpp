@@ -1,19 +1,26 @@
 // fsi: the command-line front end.
 //   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet]
 //   fsi validate CASE_DIR [--out DIR]   runs the checks in CASE_DIR/reference.yaml against their references
-//   fsi map-check SRC DST [--tolerance T] [--json FILE]   checks the projections between two interface meshes
+//   fsi map-check SRC DST [--tolerance T] [--json FILE] [--set key=value]
+//                          checks the projections between two interface meshes (Gmsh file, OpenFOAM patch
+//                          or a structure scene's coupling interface)
+//   fsi plot RUN_DIR [--out DIR] [--color auto|stress|displacement]
+//                          PNG plots of a run (share/fsi/fsi_plot.py)
 
 #include <fmt/format.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
-#include "coupling/interface/InterfaceIO.hpp"
+#include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/Simulation.hpp"
@@ -95,7 +102,9 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // Exit code 0 when every point mapped, 1 when some did not (the summary says which); bad input throws.
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
-                    const std::string& variant, int quadratureLevel) {
+                    const std::string& variant, int quadratureLevel, const std::vector<std::string>& sets) {
+  if (!sets.empty() && !fsi::coupling::isSceneFile(src) && !fsi::coupling::isSceneFile(dst))
+    throw fsi::InputError("--set applies to a structure scene (SCENE.yaml), but neither side is one");
   if (quadratureLevel < 1)
     throw fsi::InputError(fmt::format("--quadrature-level {}: must be >= 1", quadratureLevel));
   fsi::coupling::MapCheckOptions opt;
@@ -112,8 +121,8 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
     out.open(jsonOut);
     if (!out) throw fsi::InputError(fmt::format("{}: cannot write", jsonOut.string()));
   }
-  const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterface(src);
-  const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterface(dst);
+  const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterfaceOrScene(src, sets);
+  const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterfaceOrScene(dst, sets);
   opt.tolerance = tolerance;
   opt.quadratureLevel = quadratureLevel;
   const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
@@ -123,6 +132,36 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
     if (!out) throw fsi::InputError(fmt::format("{}: write failed", jsonOut.string()));
   }
   return r.allMapped() ? 0 : 1;
+}
+
+// The plots are drawn by a Python script (matplotlib) installed next to the program: <exe dir>/../share/fsi
+// (build/share/fsi in the build tree, PREFIX/share/fsi when installed). It replaces this process (execv, the
+// arguments as a vector, no shell), so its exit code is ours: 0 written, 2 bad input, 1 modules missing.
+int plotCommand(const fs::path& runDir, const fs::path& out, const std::string& color) {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot locate the fsi executable (/proc/self/exe): " + ec.message());
+  const fs::path script = exe.parent_path().parent_path() / "share" / "fsi" / "fsi_plot.py";
+  if (!fs::is_regular_file(script))
+    throw std::runtime_error(
+        fmt::format("{} not found: the fsi installation is incomplete (the build copies "
+                    "apps/fsi/fsi_plot.py there)",
+                    script.string()));
+  const std::string python = "/usr/bin/python3";  // Debian's, with numpy, matplotlib and h5py
+  if (::access(python.c_str(), X_OK) != 0)
+    throw std::runtime_error(python + " not found: install python3-matplotlib python3-h5py");
+  std::vector<std::string> args{python, script.string(), runDir.string(), "--color", color};
+  if (!out.empty()) {
+    args.emplace_back("--out");
+    args.push_back(out.string());
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  ::execv(python.c_str(), argv.data());
+  throw std::runtime_error(fmt::format("cannot run {}: {}", python, std::strerror(errno)));
 }
 
 }  // namespace
@@ -153,7 +192,11 @@ int main(int argc, char** argv) {
   fs::path mapJson;
   std::string mapVariant = "consistent";
   int mapLevel = 1;
-  mapCheck->add_option("source", mapSrc, "first mesh: FILE.msh, FILE.msh:GROUP or CASE_DIR:PATCH")
+  std::vector<std::string> mapSets;
+  mapCheck
+      ->add_option(
+          "source", mapSrc,
+          "first mesh: FILE.msh, FILE.msh:GROUP, CASE_DIR:PATCH or SCENE.yaml (its coupling interface)")
       ->required();
   mapCheck->add_option("target", mapDst, "second mesh, same forms")->required();
   auto* mapTolOpt = mapCheck->add_option(
@@ -163,8 +206,28 @@ int main(int argc, char** argv) {
   mapCheck->add_option("--variant", mapVariant, "projection: consistent (default), lumped or dual");
   mapCheck->add_option("--quadrature-level", mapLevel,
                        "split each target triangle into level^2 for quadrature");
+  mapCheck->add_option("--set", mapSets,
+                       "override a value of the scene side(s): key.path=value (repeatable)");
 
-  CLI11_PARSE(app, argc, argv);
+  auto* plot =
+      app.add_subcommand("plot", "PNG plots of a structure run (fsi run --out DIR) or a coupled case");
+  fs::path plotDir, plotOut;
+  std::string plotColor = "auto";
+  plot->add_option("run", plotDir, "output folder of `fsi run`, or a coupled OpenFOAM case folder")
+      ->required();
+  plot->add_option("--out,-o", plotOut, "folder for the PNGs and index.json (default RUN/plots)");
+  plot->add_option("--color", plotColor,
+                   "structure picture coloured by: auto (major principal stress if written), stress or "
+                   "displacement")
+      ->check(CLI::IsMember({"auto", "stress", "displacement"}));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version print and succeed; any other command-line error is bad input: exit code 2 (CLI11
+    // would return its own codes, 105 and up).
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   try {
     if (*run) return runCommand(scenePath, outDir, sets, quiet);
     if (*validate) return validateCommand(caseDir, valOut, quiet);
@@ -172,8 +235,9 @@ int main(int argc, char** argv) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0))
         throw fsi::InputError(fmt::format("--tolerance {}: must be a distance >= 0", mapTolerance));
       return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
-                             mapVariant, mapLevel);
+                             mapVariant, mapLevel, mapSets);
     }
+    if (*plot) return plotCommand(plotDir, plotOut, plotColor);
   } catch (const fsi::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

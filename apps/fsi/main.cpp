@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
@@ -32,9 +33,26 @@ using namespace fsi::structure;
 
 namespace {
 
+// The structural side of a coupled scene has no end time of its own (the flow solver sets it); run alone it
+// would start with an infinite time to go, so it needs one given.
+void requireEndTime(const Scene& scene) {
+  if (scene.solver.type == SolverControl::Type::ExplicitDynamics && !std::isfinite(scene.time.endTime))
+    throw fsi::InputError(
+        fmt::format("{}: time.end: this coupled scene takes its end time from the flow "
+                    "solver; to run the structure alone, give one (e.g. --set time.end=1.0)",
+                    scene.file.string()));
+}
+
 int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets,
                bool quiet) {
   Scene scene = loadScene(scenePath, sets);
+  requireEndTime(scene);
+  // An output directory that cannot be made is bad input too: say so before the run, not as a crash in it.
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out))
+    throw fsi::InputError(fmt::format("--out {}: cannot create the output directory{}", out.string(),
+                                      ec ? ": " + ec.message() : ""));
   RunOptions opt;
   opt.outDir = out;
   opt.quiet = quiet;
@@ -49,12 +67,12 @@ int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector
 int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   const fs::path refFile = caseDir / "reference.yaml";
   if (!fs::exists(refFile)) throw fsi::InputError(fmt::format("{}: no such file", refFile.string()));
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(refFile.string());
-  } catch (const YAML::Exception& e) {
-    throw fsi::InputError(fmt::format("{}: {}", refFile.string(), e.what()));
-  }
+  std::ifstream in(refFile);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw fsi::InputError(fmt::format("{}: cannot read", refFile.string()));
+  const YAML::Node root = parseDocument(text.str(), refFile.string());
+  checkDocument(root, refFile.string());
   YamlMap top(root, refFile.string(), "");
   const std::string source = top.string("reference");
   const YAML::Node checks = top.raw("checks");
@@ -74,6 +92,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
     YamlMap expects = c.map("expect");
     c.finish({"label", "scene", "set", "expect"});
     Scene scene = loadScene(caseDir / sceneName, sets);
+    requireEndTime(scene);
     RunOptions opt;
     opt.outDir = out / fmt::format("check{}", i);
     opt.quiet = quiet;
@@ -83,6 +102,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
       const double value = e.number("value");
       const double relTol = e.number("rel_tol");
       e.finish({"value", "rel_tol"});
+      if (!(relTol >= 0)) e.failAt("rel_tol", "must be >= 0");
       const auto it = r.probes.find(probe);
       if (it == r.probes.end()) expects.failAt(probe, fmt::format("the scene defines no probe '{}'", probe));
       // Relative error; for an expected 0 the tolerance is absolute.
@@ -221,19 +241,31 @@ int main(int argc, char** argv) {
                    "displacement")
       ->check(CLI::IsMember({"auto", "stress", "displacement"}));
 
+  // Exit codes (README): 0 done, 1 any other failure, 2 bad input (arguments included), 3 unstable, 4 not
+  // converged, 130 interrupted. CLI11's own codes (104-114) would be mistaken for run results.
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help and --version print and succeed; any other command-line error is bad input: exit code 2 (CLI11
-    // would return its own codes, 105 and up).
-    return app.exit(e) == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help prints the usage and succeeds
+    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+      // CLI11 would only say "A subcommand is required"; name the word it did not know instead.
+      std::string names;
+      for (const CLI::App* c : app.get_subcommands([](CLI::App*) { return true; }))
+        names += (names.empty() ? "" : ", ") + c->get_name();
+      fmt::print(stderr, "error: unknown command '{}'; commands: {}\nrun 'fsi --help' for the usage\n",
+                 argv[1], names);
+      return 2;
+    }
+    fmt::print(stderr, "error: {}\nrun '{} --help' for the usage\n", e.what(),
+               app.get_subcommands().empty() ? "fsi" : "fsi " + app.get_subcommands().front()->get_name());
+    return 2;
   }
   try {
     if (*run) return runCommand(scenePath, outDir, sets, quiet);
     if (*validate) return validateCommand(caseDir, valOut, quiet);
     if (*mapCheck) {
-      if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0))
-        throw fsi::InputError(fmt::format("--tolerance {}: must be a distance >= 0", mapTolerance));
+      if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))
+        throw fsi::InputError(fmt::format("--tolerance {}: must be a finite distance >= 0", mapTolerance));
       return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
                              mapVariant, mapLevel, mapSets);
     }
@@ -243,6 +275,9 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  } catch (...) {
+    fmt::print(stderr, "error: unknown failure\n");
     return 1;
   }
   return 0;

@@ -1,6 +1,5 @@
 // A structure scene's coupling interface as an interface mesh (coupling/interface/SceneInterface): the mesh
 // the coupled run uses, and what `fsi map-check SCENE.yaml CASE:patch` checks against the fluid side.
-#include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -137,17 +136,8 @@ TEST_F(SceneInterfaceTest, MapsOntoAnOpenFoamPatch) {
 
 TEST_F(SceneInterfaceTest, MapsOntoAGmshSurface) {
   const fs::path scene = writeScene(kScene, "structure.yml");
-  const fs::path msh = dir_ / "fluid.msh";
-  gmsh::initialize(0, nullptr, false);
-  gmsh::option::setNumber("General.Terminal", 0);
-  gmsh::model::add("fluid");
-  const int s = gmsh::model::occ::addRectangle(-0.5, -0.5, 0, 1, 1);
-  gmsh::model::occ::synchronize();
-  gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, {s}), "canopy");
-  gmsh::option::setNumber("Mesh.MeshSizeMax", 0.09);
-  gmsh::model::mesh::generate(2);
-  gmsh::write(msh.string());
-  gmsh::finalize();
+  // Unstructured Gmsh mesh of the same square (tests/data/gmsh/unstructured_square.geo).
+  const fs::path msh = fs::path(FSI_SOURCE_DIR) / "tests" / "data" / "gmsh" / "unstructured_square_41.msh";
   MapCheckOptions opt;
   opt.applyRepeats = 1;
   const MapCheckResult r =

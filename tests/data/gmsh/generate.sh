@@ -1,5 +1,5 @@
 #!/bin/sh
-# Regenerates the Gmsh fixtures of tests/unit/test_gmsh_reader.cpp and test_projection.cpp from the .geo
+# Regenerates the Gmsh fixtures of tests/unit/test_gmsh_reader.cpp, test_projection.cpp and test_scene_interface.cpp from the .geo
 # files here with the gmsh command (Gmsh 4.8.4 wrote the committed files). The tests check them against
 # properties of the geometry (counts of the structured meshes, areas, lengths, normals), not against the
 # output of a reader.
@@ -15,5 +15,6 @@ for geo in rectangle box; do
 done
 gmsh -2 second_order.geo -format msh41 -o second_order_41.msh > /dev/null
 gmsh -2 two_surfaces.geo -format msh41 -o two_surfaces_41.msh > /dev/null
+gmsh -2 unstructured_square.geo -format msh41 -o unstructured_square_41.msh > /dev/null
 gmsh -1 cable.geo -format msh41 -o cable_41.msh > /dev/null
 gmsh -1 cable.geo -format msh22 -o cable_22.msh > /dev/null

@@ -530,6 +530,10 @@ bool fsiCoupling::execute() {
   } else {
     try {
       logWindow(fluidTotal, loads, finished);
+      // OpenFOAM writes the fields at the end only when it is one of its write times (and the implicit
+      // scheme's spare step moved the end): write the last window now, fields and structure state together,
+      // so a continued run can start from it.
+      if (finished && !time_.writeTime()) const_cast<Time&>(time_).writeNow();
       if (time_.writeTime() || finished) writeStructure();
     } catch (const Foam::error&) {
       throw;
@@ -546,7 +550,7 @@ bool fsiCoupling::execute() {
   tStructure_ += seconds(t1, t2);
   tCheckpoint_ += seconds(t2, t3);
   if (finished && implicit_) {
-    // The spare step added at start-up is not run: stop here (fields of this time are already written).
+    // The spare step added at start-up is not run: stop here (this window is written above).
     const_cast<Time&>(time_).setEndTime(time_.value());
     end();
   }

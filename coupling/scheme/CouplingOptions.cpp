@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "structure/scene/NearestName.hpp"
+
 namespace fsi::coupling {
 namespace {
 
@@ -119,7 +121,7 @@ OptionValues::Value parse(const OptionSpec& spec, const std::vector<std::string>
     case OptionType::Choice:
       if (!contains(spec.choices, t)) {
         std::string what = "is not a valid choice";
-        const std::string near = nearestKey(t, spec.choices);
+        const std::string near = fsi::nearestName(t, spec.choices);
         if (!near.empty()) what += " (did you mean '" + near + "'?)";
         fail(spec, tokens, what);
       }
@@ -277,7 +279,7 @@ OptionValues OptionSchema::validate(const OptionTokens& tokens) const {
   std::set<std::string> seen;
   for (const auto& [key, toks] : tokens) {
     if (!contains(all, key))
-      throw OptionError(key, "unknown option '" + key + "'; did you mean '" + nearestKey(key, all) +
+      throw OptionError(key, "unknown option '" + key + "'; did you mean '" + fsi::nearestName(key, all) +
                                  "'? Valid options: " + join(ours, " ") +
                                  (host.empty() ? "" : " (and " + hostName_ + "'s: " + join(host, " ") + ")"));
     if (!seen.insert(key).second) throw OptionError(key, "option '" + key + "' is given twice");
@@ -332,37 +334,6 @@ OptionValues OptionSchema::validate(const OptionTokens& tokens) const {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-
-int editDistance(const std::string& a0, const std::string& b0) {
-  std::string a = a0, b = b0;
-  for (char& c : a) c = char(std::tolower(static_cast<unsigned char>(c)));
-  for (char& c : b) c = char(std::tolower(static_cast<unsigned char>(c)));
-  const std::size_t n = a.size(), m = b.size();
-  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1));
-  for (std::size_t i = 0; i <= n; ++i) d[i][0] = int(i);
-  for (std::size_t j = 0; j <= m; ++j) d[0][j] = int(j);
-  for (std::size_t i = 1; i <= n; ++i)
-    for (std::size_t j = 1; j <= m; ++j) {
-      const int cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[n][m];
-}
-
-std::string nearestKey(const std::string& key, const std::vector<std::string>& candidates) {
-  std::string best;
-  int bestDistance = std::numeric_limits<int>::max();
-  for (const std::string& c : candidates) {
-    const int d = editDistance(key, c);
-    if (d < bestDistance) {
-      bestDistance = d;
-      best = c;
-    }
-  }
-  return best;
-}
 
 // ---------------------------------------------------------------------------------------------------------
 // The tables. Why each range:

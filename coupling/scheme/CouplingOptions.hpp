@@ -133,12 +133,6 @@ class OptionSchema {
   std::string hostName_ = "host";
 };
 
-/// Optimal string alignment distance (insertions, deletions, substitutions and swaps of two neighbours),
-/// ignoring case: "shceme" is 1 from "scheme", "maptolerance" 0 from "mapTolerance".
-int editDistance(const std::string& a, const std::string& b);
-/// The candidate nearest to `key` (first one on ties); empty if there are none.
-std::string nearestKey(const std::string& key, const std::vector<std::string>& candidates);
-
 /// An acceleration of the implicit scheme: its name (the value of `acceleration`), a one-line description,
 /// its own options (conditions on `acceleration` are added by couplingOptionSchema()) and a factory.
 struct AccelerationEntry {

@@ -21,23 +21,6 @@ std::string locate(const std::string& file, const YAML::Node& node, const std::s
   return fmt::format("{}:{}:{}: {}", file, m.line + 1, m.column + 1, where);
 }
 
-std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t bestD = std::max<std::size_t>(2, word.size() / 3) + 1;
-  for (const auto& c : candidates) {
-    std::vector<std::size_t> prev(c.size() + 1), cur(c.size() + 1);
-    for (std::size_t j = 0; j <= c.size(); ++j) prev[j] = j;
-    for (std::size_t i = 1; i <= word.size(); ++i) {
-      cur[0] = i;
-      for (std::size_t j = 1; j <= c.size(); ++j)
-        cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (word[i - 1] == c[j - 1] ? 0 : 1)});
-      std::swap(prev, cur);
-    }
-    if (prev[c.size()] < bestD) bestD = prev[c.size()], best = c;
-  }
-  return best;
-}
-
 namespace {
 std::string joinKeys(const std::vector<std::string>& keys) {
   std::string s;

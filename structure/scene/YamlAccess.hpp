@@ -11,13 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "structure/scene/NearestName.hpp"
+
 namespace fsi::structure {
 
 /// "file:line:col: path: message" for a node (line/col omitted for values set on the command line).
 std::string locate(const std::string& file, const YAML::Node& node, const std::string& path);
-
-/// Closest candidate by edit distance, or "" if none is close.
-std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);
 
 /// Inclusive range an integer key must lie in. The default is the range of `int`, the type most integer
 /// keys end up in, so that a value never wraps when it is narrowed.

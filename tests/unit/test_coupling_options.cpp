@@ -12,6 +12,7 @@
 #include "TestScenes.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/scheme/CouplingOptions.hpp"
+#include "structure/scene/NearestName.hpp"
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::coupling;
@@ -300,10 +301,10 @@ TEST(CouplingOptions, ConfigAndAccelerationFromValues) {
 }
 
 TEST(CouplingOptions, EditDistanceAndTable) {
-  EXPECT_EQ(editDistance("shceme", "scheme"), 1);  // a swap of neighbours is one edit
-  EXPECT_EQ(editDistance("kitten", "sitting"), 3);
-  EXPECT_EQ(editDistance("MAPTOLERANCE", "mapTolerance"), 0);
-  EXPECT_EQ(nearestKey("x", {}), "");
+  EXPECT_EQ(fsi::editDistance("shceme", "scheme"), 1);  // a swap of neighbours is one edit
+  EXPECT_EQ(fsi::editDistance("kitten", "sitting"), 3);
+  EXPECT_EQ(fsi::editDistance("MAPTOLERANCE", "mapTolerance"), 0);
+  EXPECT_EQ(fsi::nearestName("x", {}), "");
   // Every default in the table is a valid value of its own option, and the docs table lists every key.
   const OptionSchema schema = couplingOptionSchema();
   for (const OptionSpec& s : schema.specs()) {

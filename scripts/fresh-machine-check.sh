@@ -16,6 +16,8 @@
 # Environment:
 #   FSI_FRESH_DIR=DIR     scratch parent (default ${TMPDIR:-/tmp}); the root goes to DIR/fsi-fresh.XXXXXX
 #   FSI_FRESH_KEEP=1      keep the root and logs at the end (debugging); default: delete them
+#   FSI_FRESH_USER=1      run the README commands as a user with sudo (the README's other case) instead of
+#                         root: adds the sudo package and a user "fsi" with passwordless sudo
 #   FSI_FRESH_CACHE=FILE  reuse the base root (steps 1-2, nothing of the project) from the tarball FILE, or
 #                         write FILE after building it — for fast local reruns; CI leaves it unset and
 #                         starts from nothing. Delete FILE when the mirror or the base package list changes.
@@ -23,17 +25,12 @@
 set -euo pipefail
 
 if [ "$(id -u)" -ne 0 ]; then
-  exec sudo --preserve-env=FSI_FRESH_DIR,FSI_FRESH_KEEP,FSI_FRESH_CACHE,TMPDIR "$0" "$@"
+  exec sudo --preserve-env=FSI_FRESH_DIR,FSI_FRESH_KEEP,FSI_FRESH_CACHE,FSI_FRESH_USER,TMPDIR "$0" "$@"
 fi
 
 repo="$(cd "$(dirname "$0")/.." && pwd)"
 base_packages=(g++ cmake make git python3)
 suite=bookworm
-# Our own git calls may run as root on a checkout owned by another user (CI through sudo): a private global
-# config that trusts it, and nothing from the caller's config.
-gitcfg="$(mktemp)"
-printf '[safe]\n\tdirectory = *\n' > "$gitcfg"
-export GIT_CONFIG_GLOBAL="$gitcfg" GIT_CONFIG_NOSYSTEM=1
 
 t_all=$SECONDS
 say() { echo "[fresh] $*"; }
@@ -66,7 +63,7 @@ host_apt_entries() {
   done
 }
 entries="$(host_apt_entries)"
-mirror="$(awk -v s="$suite" '$2 == s { print $1; exit }' <<< "$entries")"
+mirror="$(awk -v s="$suite" '$2 == s && / main( |$)/ { print $1; exit }' <<< "$entries")"
 if [ -z "$mirror" ]; then
   say "no '$suite' entry in /etc/apt/sources.list or /etc/apt/sources.list.d/: cannot pick the Debian mirror"
   exit 2
@@ -75,6 +72,12 @@ fi
 # --- scratch root; every exit path kills what runs in it, unmounts and deletes it --------------------------
 scratch="${FSI_FRESH_DIR:-${TMPDIR:-/tmp}}"
 mkdir -p "$scratch"
+# the root grows to about 3 GB (OpenFOAM, gmsh, the build), the optional cache is about 0.9 GB
+avail_kb=$(df --output=avail -k "$scratch" | tail -n 1)
+if [ "$avail_kb" -lt $((5 * 1024 * 1024)) ]; then
+  say "$scratch has $((avail_kb / 1024)) MB free; the check needs 5 GB (set FSI_FRESH_DIR to another folder)"
+  exit 2
+fi
 work="$(mktemp -d "$scratch/fsi-fresh.XXXXXX")"
 root="$work/root"
 logs="$work/logs"
@@ -105,7 +108,6 @@ cleanup() {
   trap - EXIT INT TERM
   kill_chroot_processes
   unmount_all
-  rm -f "$gitcfg"
   if [ -n "$(mounts_under_root)" ]; then
     say "still mounted under $root, not deleting it:"; mounts_under_root
   elif [ "${FSI_FRESH_KEEP:-0}" = 1 ]; then
@@ -122,6 +124,11 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
+
+# Our own git calls may run as root on a checkout owned by another user (CI through sudo): a private global
+# config that trusts it, and nothing from the caller's config.
+printf '[safe]\n\tdirectory = *\n' > "$work/gitconfig"
+export GIT_CONFIG_GLOBAL="$work/gitconfig" GIT_CONFIG_NOSYSTEM=1
 
 # stamp: prefixes every line with the seconds since the phase began (for the sub-phase times below)
 stamp() { local t0=$SECONDS line; while IFS= read -r line; do printf '%5d %s\n' $((SECONDS - t0)) "$line"; done; }
@@ -142,6 +149,14 @@ phase() {
 in_root() {
   chroot "$root" /usr/bin/env -i HOME=/root USER=root LOGNAME=root SHELL=/bin/bash TERM=dumb \
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin /bin/bash -c "$1"
+}
+# as_user COMMAND: the same as the user who runs the README commands (root, or "fsi" with FSI_FRESH_USER=1)
+user=root home=/root
+if [ "${FSI_FRESH_USER:-0}" = 1 ]; then user=fsi home=/home/fsi; fi
+as_user() {
+  if [ "$user" = root ]; then in_root "$1"; return; fi
+  chroot --userspec="$user:$user" "$root" /usr/bin/env -i HOME="$home" USER="$user" LOGNAME="$user" \
+    SHELL=/bin/bash TERM=dumb PATH=/usr/local/bin:/usr/bin:/bin /bin/bash -c "$1"
 }
 
 say "repository $repo at $(git -C "$repo" rev-parse --short HEAD); mirror $mirror; scratch root $root"
@@ -177,6 +192,12 @@ fi
 # installer writes on a real machine, comes from here too.
 [ -s "$root/etc/hosts" ] || cp /etc/hosts "$root/etc/hosts"
 
+if [ "$user" != root ]; then
+  phase "user $user with sudo" "$logs/user.log" in_root "export DEBIAN_FRONTEND=noninteractive
+    apt-get install -y -qq --no-install-recommends sudo && useradd --create-home --shell /bin/bash $user &&
+    echo '$user ALL=(ALL) NOPASSWD: ALL' > /etc/sudoers.d/$user && chmod 440 /etc/sudoers.d/$user"
+fi
+
 # --- kernel file systems: /proc, /sys, /dev with its own pts and shm (OpenMPI's shared memory) ---------------
 mount -t proc proc "$root/proc" -o nosuid,noexec,nodev
 mount -t sysfs sys "$root/sys" -o nosuid,noexec,nodev,ro
@@ -192,13 +213,14 @@ mount -t tmpfs shm "$root/dev/shm" -o mode=1777,nosuid,nodev
 commit="$(git -C "$repo" rev-parse HEAD)"
 clone_repo() {
   git clone -q --bare --no-hardlinks "$repo" "$root/tmp/origin.git"
-  in_root "git clone -q /tmp/origin.git /root/parachute-fsi && cd /root/parachute-fsi && git checkout -q --detach $commit && git log -1 --format='%h %s'"
+  in_root "chown -R $user: /tmp/origin.git"
+  as_user "git clone -q /tmp/origin.git $home/parachute-fsi && cd $home/parachute-fsi && git checkout -q --detach $commit && git log -1 --format='%h %s'"
   rm -rf "$root/tmp/origin.git"
 }
 phase "git clone ${commit:0:7}" "$logs/clone.log" clone_repo
 
 # --- 4: the README's commands -------------------------------------------------------------------------------
-phase "scripts/main.sh" "$logs/main.log" in_root "cd /root/parachute-fsi && scripts/main.sh"
+phase "scripts/main.sh (as $user)" "$logs/main.log" as_user "cd $home/parachute-fsi && scripts/main.sh"
 # sub-phases from the stamped log: installs end at install-deps' last line, the build at ninja's last step
 awk '/\[install-deps\] (done|all [0-9]+ packages present)/ { inst = $1 }
      $2 ~ /^\[[0-9]+\/[0-9]+\]$/ { split($2, a, /[][\/]/); if (a[2] == a[3]) built = $1 }
@@ -206,10 +228,10 @@ awk '/\[install-deps\] (done|all [0-9]+ packages present)/ { inst = $1 }
      END { printf "[fresh]   inside main.sh: installs %d s, build %d s, main job %d s\n", inst, built - inst, last - built }' \
   "$logs/main.log"
 for f in results/airbag/results.xdmf results/airbag/results.h5 results/airbag/summary.json; do
-  [ -s "$root/root/parachute-fsi/$f" ] || { say "scripts/main.sh wrote no $f"; exit 1; }
+  [ -s "$root$home/parachute-fsi/$f" ] || { say "scripts/main.sh wrote no $f"; exit 1; }
 done
 
-phase "scripts/test.sh" "$logs/test.log" in_root "cd /root/parachute-fsi && scripts/test.sh"
+phase "scripts/test.sh (as $user)" "$logs/test.log" as_user "cd $home/parachute-fsi && scripts/test.sh"
 # The adapter and coupled tests exist only when the OpenFOAM headers were installed: a suite without them
 # would pass while missing what this check is for.
 for label in adapter coupled; do

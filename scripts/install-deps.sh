@@ -10,8 +10,9 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libhdf5-dev hdf5-tools gmsh libnanoflann-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-numpy python3-matplotlib python3-h5py
+  python3 python3-numpy python3-matplotlib python3-h5py python3-yaml
 )
+# python3-yaml: cases/coupled/summarize.py reads the coupled cases' reference.yaml.
 
 missing=()
 for p in "${packages[@]}"; do

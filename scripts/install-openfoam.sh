@@ -10,8 +10,10 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 
+# lbzip2: tar unpacks the source package's .orig.tar.bz2 with it (minimal Debian has no bzip2 program:
+# "tar (child): lbzip2: Cannot exec").
 need=()
-for p in openfoam libopenfoam openmpi-bin; do
+for p in openfoam libopenfoam openmpi-bin lbzip2; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need+=("$p")
 done
 if [ ${#need[@]} -gt 0 ]; then

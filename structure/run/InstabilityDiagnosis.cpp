@@ -59,6 +59,9 @@ std::string diagnoseInstability(const Scene& scene, const CentralDifference& cd,
   const EnergyLedger& E = cd.energy();
   if (nonFinite && firstBad >= 0) {
     s += fmt::format("non-finite state at {} node(s), first {}. ", badCount, m.describeNode(firstBad));
+  } else if (nonFinite && !std::isfinite(cd.stableDt()) && !(cd.maxDt() < 1e299)) {
+    s += "no step could be taken: no element bounds the step (no membrane or cable moves) and time.max_dt "
+         "is not set. ";
   } else if (E.growth() > kGrowthLimit || !std::isfinite(E.growth())) {
     s += fmt::format(
         "the energy of the step-to-step velocity change ({:.3g} J) is {:.3g} times the energy supplied to "

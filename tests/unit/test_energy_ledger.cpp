@@ -5,15 +5,16 @@
 // checks built on it (growth of the step-to-step velocity energy, energy created in the elements).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "structure/integrate/CentralDifference.hpp"
-#include "structure/io/StateFile.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
 

@@ -4,19 +4,19 @@
 // command line (tests/cli/interrupt_test.py).
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
 #include "structure/integrate/DynamicRelaxation.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/run/Simulation.hpp"
-#include "structure/scene/Generators.hpp"
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::structure;

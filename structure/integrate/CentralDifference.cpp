@@ -63,6 +63,16 @@ void CentralDifference::evaluateForces(bool withEnergy) {
   computeForces(withEnergy);
 }
 
+double CentralDifference::createdAtCurrentState() {
+  computeForces(true);
+  const Nodes& N = model_.nodes;
+  double power = 0;
+  for (int d = 0; d < 3 * N.count; ++d) power += N.fint[d] * N.v[d];
+  EnergyLedger e = ledger_;
+  e.internalWork += ledger_.pendingInt + 0.5 * dt_ * power;
+  return e.created();
+}
+
 bool CentralDifference::step(double limitTime, bool monitor) {
   Nodes& N = model_.nodes;
   const double stable = computeForces(monitor);

@@ -47,6 +47,12 @@ class CentralDifference {
   const Constraints& constraints() const { return constraints_; }
   /// Re-evaluates forces at the current state (for reactions and output); does not advance.
   void evaluateForces(bool withEnergy);
+  /// The energy created in the elements through the current state x(n+1), as EnergyLedger::created() at a
+  /// monitoring step: evaluates the forces and the strain energy here and completes the internal work with
+  /// the trapezoidal half ½Δt f_int(n+1)·v(n+½) of the last step. For the checks at outputs and at the end of
+  /// a run, whatever the monitoring interval; the next step evaluates its forces anew, so the trajectory does
+  /// not change.
+  double createdAtCurrentState();
   /// Restores a saved state (x, v at the half step, time, last step size). The energy ledger starts again
   /// from this state (KE0 = ½ v·M v, U0 its strain energy, no work booked).
   void restore(const std::vector<double>& x, const std::vector<double>& v, double time, double dt,

@@ -36,7 +36,7 @@ std::string mostStrainedElement(const Scene& scene) {
 }  // namespace
 
 std::string diagnoseInstability(const Scene& scene, const CentralDifference& cd, long goodSteps,
-                                double goodTime, bool nonFinite) {
+                                double goodTime, bool nonFinite, double created) {
   const Model& m = *scene.model;
   const Nodes& N = m.nodes;
   std::string s = fmt::format("instability at step {} (t = {:.6g} s): ", cd.steps(), cd.time());
@@ -69,15 +69,13 @@ std::string diagnoseInstability(const Scene& scene, const CentralDifference& cd,
         "stability limit; fastest {} (|v| = {:.3g} m/s). ",
         E.kinetic - E.kineticProduct, E.growth(), E.supplied, kGrowthLimit, m.describeNode(fastest),
         std::sqrt(vmax));
-  } else if (!(E.createdLast <= scene.time.energyTolerance)) {
+  } else if (const double c = created >= 0 ? created : E.createdLast; !(c <= scene.time.energyTolerance)) {
     s += fmt::format(
         "the elements hold {:.3g} J more strain energy than the work done on them, {:.3g} of the energy "
         "supplied (tolerance {:g}): the integration is creating energy, the step being too large for how "
-        "fast "
-        "the forces change (lines snapping taut, elements switching state) or unstable; element damping "
-        "(bulk_viscosity) or a lower time.safety helps; fastest {} (|v| = {:.3g} m/s). ",
-        E.createdLast * E.supplied, E.createdLast, scene.time.energyTolerance, m.describeNode(fastest),
-        std::sqrt(vmax));
+        "fast the forces change (lines snapping taut, elements switching state) or unstable; element "
+        "damping (bulk_viscosity) or a lower time.safety helps; fastest {} (|v| = {:.3g} m/s). ",
+        c * E.supplied, c, scene.time.energyTolerance, m.describeNode(fastest), std::sqrt(vmax));
   } else {
     s += fmt::format(
         "energy balance error {:.3g} exceeds the tolerance {:g} (the work of some force is not accounted "

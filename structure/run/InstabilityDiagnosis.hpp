@@ -14,9 +14,11 @@ namespace fsi::structure {
 
 /// One-paragraph diagnosis of the current (unstable) state of `cd`; `goodSteps`/`goodTime` name the last
 /// stable state the caller kept. `nonFinite`: the integrator reported a non-finite state; otherwise (or if no
-/// node is non-finite) the energy ledger says what failed: growth() above kGrowthLimit or the balance.
+/// node is non-finite) the energy ledger says what failed: growth() above kGrowthLimit, the energy created in
+/// the elements (at the last monitoring step, or `created` if >= 0: the check at the current state), or the
+/// balance.
 std::string diagnoseInstability(const Scene& scene, const CentralDifference& cd, long goodSteps,
-                                double goodTime, bool nonFinite);
+                                double goodTime, bool nonFinite, double created = -1);
 
 /// Diagnosis of a diverged (or not converged) dynamic-relaxation run, at the model's current state (forces as
 /// last evaluated by `dr`).

@@ -199,6 +199,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   double nextOutput = scene.output.interval > 0 ? scene.output.interval : tEnd;
   int staticHits = 0;
   bool nonFinite = false;
+  double createdAtStop = -1;  // >= 0: the check at an output or the end stopped the run
   const auto wall0 = Clock::now();
   auto lastPrint = wall0;
   bool printNow = false;
@@ -254,7 +255,18 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       }
     }
     const bool atOutput = cd.time() >= limit * (1 - 1e-12) && limit == nextOutput;
-    if (atOutput && scene.output.interval > 0 && cd.time() < tEnd * (1 - 1e-12)) {
+    const bool atEnd = cd.time() >= tEnd * (1 - 1e-12);
+    // At every output and at the end, the energy created in the elements is checked whatever the monitoring
+    // interval (a short run, or one ended between monitoring steps, would otherwise skip it).
+    if ((atOutput && scene.output.interval > 0) || atEnd) {
+      const double c = cd.createdAtCurrentState();
+      if (!(c <= tc.energyTolerance)) {
+        createdAtStop = c;
+        result.reason = StopReason::Unstable;
+        break;
+      }
+    }
+    if (atOutput && scene.output.interval > 0 && !atEnd) {
       frames.write(cd.time(), cd.steps());
       auto probes = evaluateProbes(scene);
       probeRows[0].push_back(cd.time());
@@ -262,7 +274,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       nextOutput += scene.output.interval;
       printNow = true;  // a progress line per output frame too (throttled below), so short runs show progress
     }
-    if (cd.time() >= tEnd * (1 - 1e-12)) {
+    if (atEnd) {
       result.reason = tc.untilStatic ? StopReason::NotConverged : StopReason::EndTime;
       break;
     }
@@ -288,7 +300,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   const long steps = cd.steps();
 
   if (result.reason == StopReason::Unstable) {
-    result.diagnosis = diagnoseInstability(scene, cd, good.steps, good.time, nonFinite);
+    result.diagnosis = diagnoseInstability(scene, cd, good.steps, good.time, nonFinite, createdAtStop);
     // Keep the last good state: on disk as a restartable state and as the last frame of the results.
     cd.restore(good);
     cd.evaluateForces(true);

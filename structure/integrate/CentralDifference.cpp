@@ -3,8 +3,24 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 namespace fsi::structure {
+
+namespace {
+double halfVelocityEnergy(const Nodes& N) {
+  double ke = 0;
+  for (int i = 0; i < N.count; ++i)
+    for (int k = 0; k < 3; ++k) ke += 0.5 * N.mass[i] * N.v[3 * i + k] * N.v[3 * i + k];
+  return ke;
+}
+
+EnergyLedger ledgerFrom(double kinetic) {
+  EnergyLedger e;
+  e.initialKinetic = e.kinetic = e.kineticProduct = e.supplied = kinetic;
+  return e;
+}
+}  // namespace
 
 CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> effects,
                                      Constraints constraints, CentralDifferenceSettings settings,
@@ -14,12 +30,26 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
       constraints_(std::move(constraints)),
       settings_(settings),
       time_(startTime) {
+  // A dof listed twice (a node in two selected sets) follows its last entry; one entry per dof books the
+  // support reaction once.
+  auto& pm = constraints_.prescribed;
+  std::set<int> seen;
+  std::vector<PrescribedMotion> unique;
+  for (auto it = pm.rbegin(); it != pm.rend(); ++it)
+    if (seen.insert(3 * it->node + it->component).second) unique.push_back(*it);
+  pm.assign(unique.rbegin(), unique.rend());
+  prescribedOld_.resize(2 * pm.size());
+  sliderOld_.resize(3 * constraints_.sliders.size());
   constraints_.applyTo(model_.nodes);
-  const Nodes& N = model_.nodes;
-  double ke = 0;
-  for (int i = 0; i < N.count; ++i)
-    for (int k = 0; k < 3; ++k) ke += 0.5 * N.mass[i] * N.v[3 * i + k] * N.v[3 * i + k];
-  ledger_.initialKinetic = ledger_.kinetic = ke;
+  ledger_ = ledgerFrom(halfVelocityEnergy(model_.nodes));
+  recordInitialStrain();
+}
+
+void CentralDifference::recordInitialStrain() {
+  // A separate evaluation: the steps' own force evaluations stay exactly those of a run without it (the
+  // kernels that sum the energy may round differently).
+  ledger_.initialStrain = evaluateEffects(model_.nodes, effects_, time_, 1.0, true).strainEnergy;
+  ledger_.updateSupplied();
 }
 
 double CentralDifference::computeForces(bool withEnergy) {
@@ -31,6 +61,16 @@ double CentralDifference::computeForces(bool withEnergy) {
 
 void CentralDifference::evaluateForces(bool withEnergy) {
   computeForces(withEnergy);
+}
+
+double CentralDifference::createdAtCurrentState() {
+  computeForces(true);
+  const Nodes& N = model_.nodes;
+  double power = 0;
+  for (int d = 0; d < 3 * N.count; ++d) power += N.fint[d] * N.v[d];
+  EnergyLedger e = ledger_;
+  e.internalWork += ledger_.pendingInt + 0.5 * dt_ * power;
+  return e.created();
 }
 
 bool CentralDifference::step(double limitTime, bool monitor) {
@@ -59,63 +99,130 @@ bool CentralDifference::step(double limitTime, bool monitor) {
   const double* __restrict fe = N.fext.data();
   const double* __restrict im = N.invMassDof.data();
   const double* __restrict m = N.mass.data();
-  // Trapezoidal work: W += ½(f(n−1) + f(n))·Δx(n). The f(n−1) half was computed last step (pending_).
-  double ke = 0, wExt = pendingExt_, wInt = pendingInt_, damp = 0, nextExt = 0, nextInt = 0;
-  const double dtOld = dt_;
+  const double* __restrict X = N.X.data();
+
+  // v(n−½) and x(n) of the constrained dofs, which the sweep below overwrites.
+  for (std::size_t j = 0; j < constraints_.prescribed.size(); ++j) {
+    const PrescribedMotion& p = constraints_.prescribed[j];
+    prescribedOld_[2 * j] = v[3 * p.node + p.component];
+    prescribedOld_[2 * j + 1] = x[3 * p.node + p.component];
+  }
+  for (std::size_t j = 0; j < constraints_.sliders.size(); ++j)
+    for (int k = 0; k < 3; ++k) sliderOld_[3 * j + k] = v[3 * constraints_.sliders[j].node + k];
+
+  // One sweep: update, physical KE of the mid-step velocity, Σ m v(n−½)·v(n+½), Σ m v(n+½)², and the
+  // forces' power at both half-step velocities (the two halves of this evaluation's work).
+  double ke = 0, prod = 0, vv = 0, extOld = 0, intOld = 0, extNew = 0, intNew = 0;
   for (int i = 0; i < N.count; ++i) {
-    double keNode = 0, dampNode = 0;
+    double keNode = 0, prodNode = 0, vvNode = 0;
     for (int k = 0; k < 3; ++k) {
       const int d = 3 * i + k;
       const double vOld = v[d];
       const double vNew = (c1 * vOld + dtAvg * im[d] * (fe[d] - fi[d])) * c2;
-      const double before = 0.5 * dtOld * vOld, after = 0.5 * dtNext * vNew;  // halves of Δx(n), Δx(n+1)
-      wExt += fe[d] * before;
-      wInt += fi[d] * before;
-      nextExt += fe[d] * after;
-      nextInt += fi[d] * after;
+      extOld += fe[d] * vOld;
+      intOld += fi[d] * vOld;
+      extNew += fe[d] * vNew;
+      intNew += fi[d] * vNew;
       const double vMid = 0.5 * (vOld + vNew);
       keNode += vMid * vMid;
-      dampNode += vMid * vMid;
+      prodNode += vOld * vNew;
+      vvNode += vNew * vNew;
       v[d] = vNew;
       x[d] += dtNext * vNew;
     }
     ke += 0.5 * m[i] * keNode;
-    damp += m[i] * dampNode;
+    prod += m[i] * prodNode;
+    vv += m[i] * vvNode;
   }
 
-  // Prescribed motions: set the position, derive the velocity, book the reaction's work.
-  for (const PrescribedMotion& p : constraints_.prescribed) {
+  // Constrained dofs: replace the sweep's free velocity vCur by the constrained one in the sums, and book the
+  // work of the support reaction R, defined by M(v(n+½) − v(n−½)) = Δ(f_ext − f_int − α M v̄ + R), in the
+  // same two halves as every other force.
+  double reactOld = 0, reactNew = 0;
+  // The prescribed dofs' share of the half-step start correction below (their velocity jump is an impulse).
+  double pReactOld = 0, pReactNew = 0, pExt = 0, pInt = 0, pDamp = 0, pKick = 0;
+  auto replace = [&](int d, double mi, double vOld, double vCur, double vNew) {
+    ke += 0.125 * mi * ((vOld + vNew) * (vOld + vNew) - (vOld + vCur) * (vOld + vCur));
+    prod += mi * vOld * (vNew - vCur);
+    vv += mi * (vNew * vNew - vCur * vCur);
+    extNew += fe[d] * (vNew - vCur);
+    intNew += fi[d] * (vNew - vCur);
+  };
+  // Prescribed motions: set the position, derive the velocity.
+  for (std::size_t j = 0; j < constraints_.prescribed.size(); ++j) {
+    const PrescribedMotion& p = constraints_.prescribed[j];
     const int d = 3 * p.node + p.component;
-    const double xOld = x[d] - dtNext * v[d];
-    const double target = N.X[d] + p.amplitude * p.fn(time_ + dtNext);
-    const double vOld = v[d];
-    v[d] = (target - xOld) / dtNext;
+    const double mi = m[p.node];
+    const double vOld = prescribedOld_[2 * j], xOld = prescribedOld_[2 * j + 1], vCur = v[d];
+    const double target = X[d] + p.amplitude * p.fn(time_ + dtNext);
+    const double vNew = (target - xOld) / dtNext;
+    v[d] = vNew;
     x[d] = target;
-    const double reaction = fi[d] - fe[d];  // force the support applies, static part
-    nextExt += reaction * dtNext * v[d];
-    ke += 0.5 * m[p.node] * (0.25 * (vOld + v[d]) * (vOld + v[d]) - vOld * vOld);
+    replace(d, mi, vOld, vCur, vNew);
+    const double rDelta = mi * (vNew - vOld) + 0.5 * a * dtAvg * mi * (vOld + vNew) - dtAvg * (fe[d] - fi[d]);
+    pReactOld += 0.5 * rDelta * vOld;
+    pReactNew += 0.5 * rDelta * vNew;
+    pExt += fe[d] * (vNew - vOld);
+    pInt += fi[d] * (vNew - vOld);
+    pDamp += mi * 0.5 * (vOld + vNew) * (vNew - vOld);
+    pKick += 0.5 * mi * (vNew - vOld) * (vNew - vOld);
   }
-  // Oblique symmetry planes: remove the normal component of velocity and of the step just taken.
-  for (const PlaneSlider& s : constraints_.sliders) {
-    double* vv = v + 3 * s.node;
+  reactOld += pReactOld;
+  reactNew += pReactNew;
+  // Oblique symmetry planes: remove the normal component of velocity and of the step just taken. The
+  // reaction is normal to the plane, so its work is that of removing the normal velocity.
+  for (std::size_t j = 0; j < constraints_.sliders.size(); ++j) {
+    const PlaneSlider& s = constraints_.sliders[j];
+    double* vv3 = v + 3 * s.node;
     double* xx = x + 3 * s.node;
-    const double vn = vv[0] * s.normal[0] + vv[1] * s.normal[1] + vv[2] * s.normal[2];
+    const double mi = m[s.node];
+    const double vn = vv3[0] * s.normal[0] + vv3[1] * s.normal[1] + vv3[2] * s.normal[2];
     for (int k = 0; k < 3; ++k) {
-      vv[k] -= vn * s.normal[k];
+      const double vOld = sliderOld_[3 * j + k], vCur = vv3[k], vNew = vCur - vn * s.normal[k];
+      replace(3 * s.node + k, mi, vOld, vCur, vNew);
+      const double rDelta = mi * (1.0 + 0.5 * a * dtAvg) * (vNew - vCur);
+      reactOld += 0.5 * rDelta * vOld;
+      reactNew += 0.5 * rDelta * vNew;
+      vv3[k] = vNew;
       xx[k] -= dtNext * vn * s.normal[k];
     }
   }
 
-  pendingExt_ = nextExt;
-  pendingInt_ = nextInt;
+  // ½Δ G·v(n∓½) per force; mass damping −α M v̄ with Σ m v̄·v(n−½) = ½(A + B), Σ m v̄·v(n+½) = ½(B + C),
+  // A = Σ m v(n−½)², B = Σ m v(n−½)·v(n+½), C = Σ m v(n+½)² (A from the mid-step sum: 8 KE = A + 2B + C).
+  const double h = 0.5 * dtAvg;
+  const double A = 8.0 * ke - 2.0 * prod - vv;
+  double wExt = h * extOld + reactOld, wInt = h * intOld, wDamp = 0.5 * a * h * (A + prod);
+  const double nextExt = h * extNew + reactNew, nextInt = h * intNew, nextDamp = 0.5 * a * h * (prod + vv);
+  if (dt_ == 0) {
+    // Half-step start, v(−½) = v(0): the first half of each work is taken as ½Δ(0) G·v(½) (as for a
+    // virtual v(−½) = v(0) − δv), and the initial kinetic energy as KE0 − ½ δv·M δv, δv = v(½) − v(0).
+    // Then the work booked through x(n) is the trapezoidal ∫ f·dx from x(0) (exact for a constant force).
+    // Not for prescribed dofs: their jump to the prescribed velocity is an impulse, whose work is
+    // ½ R Δ·(v(0) + v(½)) as booked (the kinetic energy the support gives the node).
+    ledger_.startKick = 0.5 * (A - 2.0 * prod + vv) - pKick;
+    wExt = nextExt - h * pExt - pReactNew + pReactOld;
+    wInt = nextInt - h * pInt;
+    wDamp = nextDamp - a * h * pDamp;
+  }
+
   ledger_.kinetic = ke;
-  ledger_.externalWork += wExt;
-  ledger_.internalWork += wInt;
-  ledger_.massDamping += a * damp * dtAvg;
+  ledger_.kineticProduct = 0.5 * prod;
+  ledger_.externalWork += ledger_.pendingExt + wExt;
+  ledger_.internalWork += ledger_.pendingInt + wInt;
+  ledger_.massDamping += ledger_.pendingDamp + wDamp;
+  ledger_.pendingExt = nextExt;
+  ledger_.pendingInt = nextInt;
+  ledger_.pendingDamp = nextDamp;
+  ledger_.updateSupplied();
+  if (monitor) {
+    ledger_.createdLast = ledger_.created();
+    ledger_.maxCreated = std::max(ledger_.maxCreated, ledger_.createdLast);
+  }
   time_ += dtNext;
   dt_ = dtNext;
   ++steps_;
-  return std::isfinite(ke) && std::isfinite(wInt);
+  return std::isfinite(ke) && std::isfinite(prod) && std::isfinite(wInt) && std::isfinite(wExt);
 }
 
 void CentralDifference::restore(const std::vector<double>& x, const std::vector<double>& v, double time,
@@ -125,10 +232,23 @@ void CentralDifference::restore(const std::vector<double>& x, const std::vector<
   time_ = time;
   dt_ = dt;
   steps_ = steps;
+  ledger_ = ledgerFrom(halfVelocityEnergy(model_.nodes));
+  recordInitialStrain();
 }
 
 CentralDifference::Checkpoint CentralDifference::checkpoint() const {
-  return {model_.nodes.x, model_.nodes.v, time_, dt_, pendingExt_, pendingInt_, steps_, ledger_};
+  Checkpoint c;
+  checkpoint(c);
+  return c;
+}
+
+void CentralDifference::checkpoint(Checkpoint& c) const {
+  c.x.assign(model_.nodes.x.begin(), model_.nodes.x.end());
+  c.v.assign(model_.nodes.v.begin(), model_.nodes.v.end());
+  c.time = time_;
+  c.dt = dt_;
+  c.steps = steps_;
+  c.ledger = ledger_;
 }
 
 void CentralDifference::restore(const Checkpoint& c) {
@@ -136,8 +256,6 @@ void CentralDifference::restore(const Checkpoint& c) {
   model_.nodes.v = c.v;
   time_ = c.time;
   dt_ = c.dt;
-  pendingExt_ = c.pendingExt;
-  pendingInt_ = c.pendingInt;
   steps_ = c.steps;
   ledger_ = c.ledger;
 }

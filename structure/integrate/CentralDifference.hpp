@@ -5,7 +5,8 @@
 //   x(n+1) = x(n) + Δt(n+1) v(n+½)
 // Mass damping α is treated implicitly (it never limits the step). Δt(n+1) = safety · min_e L_e/c_e,
 // recomputed every step by the element effects from the current geometry, unless a fixed step is given.
-// Energies are gathered in the same sweep as the update (no extra pass over the nodes).
+// Energies are gathered in the same sweep as the update (no extra pass over the nodes); the bookkeeping is
+// exact at every step (EnergyLedger), support reactions of prescribed motions and sliding planes included.
 
 #include <memory>
 #include <vector>
@@ -31,7 +32,8 @@ class CentralDifference {
 
   /// Advances one step, never past `limitTime`, which it reaches in equal steps. `monitor` also evaluates
   /// the strain energy.
-  /// Returns false if the state became non-finite (the caller diagnoses and stops).
+  /// Returns false if the state became non-finite (the caller diagnoses and stops). Growth of the energy
+  /// (an unstable step) is reported by energy().growth(), which the caller checks after every step.
   bool step(double limitTime, bool monitor);
 
   double time() const { return time_; }
@@ -45,22 +47,32 @@ class CentralDifference {
   const Constraints& constraints() const { return constraints_; }
   /// Re-evaluates forces at the current state (for reactions and output); does not advance.
   void evaluateForces(bool withEnergy);
-  /// Restores a saved state (x, v at the half step, time, last step size).
+  /// The energy created in the elements through the current state x(n+1), as EnergyLedger::created() at a
+  /// monitoring step: evaluates the forces and the strain energy here and completes the internal work with
+  /// the trapezoidal half ½Δt f_int(n+1)·v(n+½) of the last step. For the checks at outputs and at the end of
+  /// a run, whatever the monitoring interval; the next step evaluates its forces anew, so the trajectory does
+  /// not change.
+  double createdAtCurrentState();
+  /// Restores a saved state (x, v at the half step, time, last step size). The energy ledger starts again
+  /// from this state (KE0 = ½ v·M v, U0 its strain energy, no work booked).
   void restore(const std::vector<double>& x, const std::vector<double>& v, double time, double dt,
                long steps);
 
   /// Everything needed to repeat a stretch of time exactly (implicit coupling re-iterates a fluid step).
   struct Checkpoint {
     std::vector<double> x, v;
-    double time = 0, dt = 0, pendingExt = 0, pendingInt = 0;
+    double time = 0, dt = 0;
     long steps = 0;
     EnergyLedger ledger;
   };
   Checkpoint checkpoint() const;
+  /// Saves into an existing checkpoint, reusing its storage (no allocation once sized).
+  void checkpoint(Checkpoint& c) const;
   void restore(const Checkpoint& c);
 
  private:
   double computeForces(bool withEnergy);
+  void recordInitialStrain();
 
   Model& model_;
   std::vector<const Effect*> effects_;
@@ -71,7 +83,9 @@ class CentralDifference {
   double dt_ = 0;  ///< Δt(n) = t(n) − t(n−1); 0 before the first step (half-step start)
   double stableDt_ = 0;
   long steps_ = 0;
-  double pendingExt_ = 0, pendingInt_ = 0;  ///< ½ f(n)·Δx(n+1): booked once x(n+1) is reached
+  // Velocities v(n−½) of the constrained dofs, saved before the sweep overwrites them (the support
+  // reactions' work needs them). Sized once.
+  std::vector<double> prescribedOld_, sliderOld_;
 };
 
 }  // namespace fsi::structure

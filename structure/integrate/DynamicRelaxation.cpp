@@ -50,6 +50,8 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
     const double lf = double(inc) / s_.increments;
     const std::vector<double> xStart = N.x;
     bool converged = false;
+    r.increment = inc;
+    best_.iteration = -1;
     // An attempt relaxes the increment from its start; a divergence ends it and starts another one with
     // heavier masses.
     for (bool restart = true; restart;) {
@@ -66,12 +68,14 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
       bool fresh = true;  // next velocity update is a half step (start or restart)
       double kePrev = 0, c = 0, res0 = -1;
       while (true) {
-        // Static residual on free dofs, reactions on constrained ones.
-        double res = 0, reac = 0, fmax = 0, ke = 0;
+        // Static residual on free dofs, reactions on constrained ones. std::max drops a NaN, so a separate
+        // sum carries any non-finite residual to the divergence test.
+        double res = 0, reac = 0, fmax = 0, ke = 0, all = 0;
         for (int i = 0; i < N.count; ++i)
           for (int k = 0; k < 3; ++k) {
             const int d = 3 * i + k;
             const double R = N.fext[d] - N.fint[d];
+            all += R;
             fmax = std::max(fmax, std::abs(N.fext[d]));
             if (free_[d] != 0.0) {
               res = std::max(res, std::abs(R));
@@ -80,14 +84,16 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
               reac = std::max(reac, std::abs(R));
             }
           }
+        const bool finite = std::isfinite(all) && std::isfinite(strain_) && std::isfinite(ke);
         const double scale = reac > 0 ? reac : (fmax > 0 ? fmax : 1.0);
-        r.residualRatio = res / scale;
+        r.residual = finite ? res : std::numeric_limits<double>::quiet_NaN();
+        r.residualRatio = r.residual / scale;
         r.energyRatio = strain_ > 0 ? ke / strain_ : (ke > 0 ? std::numeric_limits<double>::infinity() : 0.0);
         r.history.push_back({r.iterations, r.residualRatio, r.energyRatio, ke, strain_});
         if (res0 < 0) res0 = res;
         // Divergence (masses too light for the stiffness the structure develops): restart the increment
         // with 1.5x the masses rather than fail; give up only after the masses grew 25-fold.
-        if (!std::isfinite(r.residualRatio) || !std::isfinite(strain_) || res > 1e4 * res0) {
+        if (!finite || res > 1e4 * res0) {
           if (s_.autoMass && lambda < 25.0 * r.lambda) {
             lambda *= 1.5;
             ++r.restarts;
@@ -98,17 +104,23 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
             break;
           }
           r.diverged = true;
-          r.message =
-              fmt::format("diverged at iteration {} (residual {:.3g} from {:.3g}); raise solver.lambda",
-                          r.iterations, res, res0);
+          r.startResidual = res0;
+          r.finalLambda = lambda;
+          locateResidual(r);
+          r.message = fmt::format("diverged at iteration {} (residual {} from {:.3g} N at the start)",
+                                  r.iterations, finite ? fmt::format("{:.3g} N", res) : "non-finite", res0);
           return r;
         }
+        if (r.iterations % kBestEvery == 0 || best_.iteration < 0)
+          keepIfBest(r.iterations, inc, lf, r.residualRatio);
         if (std::max(r.residualRatio, r.energyRatio) <= s_.tolerance) {
           converged = true;
           break;
         }
         if (r.iterations >= s_.maxIterations) break;
         if (interrupted && interrupted()) {
+          r.interrupted = true;
+          r.finalLambda = lambda;
           r.message = "interrupted";
           return r;
         }
@@ -193,6 +205,8 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
     }
     if (!converged) {
       r.converged = false;
+      r.finalLambda = lambda;
+      locateResidual(r);
       r.message = fmt::format(
           "increment {} of {} did not converge in {} iterations (residual ratio {:.3g}, "
           "KE/U {:.3g})",
@@ -204,6 +218,39 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
   r.converged = true;
   r.finalLambda = lambda;
   return r;
+}
+
+void DynamicRelaxation::keepIfBest(long iteration, int increment, double loadFactor, double residualRatio) {
+  if (best_.iteration >= 0 && !(residualRatio < best_.residualRatio)) return;
+  best_.x.assign(model_.nodes.x.begin(), model_.nodes.x.end());
+  best_.v.assign(model_.nodes.v.begin(), model_.nodes.v.end());
+  best_.iteration = iteration;
+  best_.increment = increment;
+  best_.loadFactor = loadFactor;
+  best_.residualRatio = residualRatio;
+}
+
+void DynamicRelaxation::locateResidual(RelaxationResult& r) const {
+  const Nodes& N = model_.nodes;
+  r.worstNode = -1;
+  r.nonFiniteNodes = 0;
+  r.firstNonFiniteNode = -1;
+  double worst = -1;
+  for (int i = 0; i < N.count; ++i) {
+    double r2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int d = 3 * i + k;
+      const double R = (N.fext[d] - N.fint[d]) * free_[d];
+      r2 += R * R;
+    }
+    if (!std::isfinite(r2) || !std::isfinite(N.x[3 * i] + N.x[3 * i + 1] + N.x[3 * i + 2])) {
+      if (r.firstNonFiniteNode < 0) r.firstNonFiniteNode = i;
+      ++r.nonFiniteNodes;
+    } else if (r2 > worst) {
+      worst = r2;
+      r.worstNode = i;
+    }
+  }
 }
 
 }  // namespace fsi::structure

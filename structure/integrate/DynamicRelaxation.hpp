@@ -11,6 +11,8 @@
 // Safeguards: Underwood's apparent-frequency test |ΔR_i| / (4 m_i |Δx_i|) > 1, failed on three iterations in
 // a row, flags a node whose mass is too small for Δt = 1 and raises it by that factor; a divergence (residual
 // up 10⁴-fold or non-finite) restarts the increment with 1.5x the masses. Both are counted in the result.
+// The iterate with the smallest residual (checked every kBestEvery iterations) is kept for the stop handling:
+// a diverged run saves it as its last good state.
 
 #include <functional>
 #include <string>
@@ -51,7 +53,14 @@ struct RelaxationResult {
   long iterations = 0;
   bool converged = false;
   bool diverged = false;
+  bool interrupted = false;
   double residualRatio = 0, energyRatio = 0;
+  double residual = 0;       ///< ‖R‖∞ on free dofs at the last evaluation [N]
+  double startResidual = 0;  ///< ‖R‖∞ at the start of the failing attempt [N]
+  int increment = 0;         ///< increment being relaxed when the run stopped (1-based)
+  int worstNode = -1;        ///< node with the largest finite residual at the last evaluation
+  int nonFiniteNodes = 0;    ///< nodes whose residual was non-finite at the last evaluation
+  int firstNonFiniteNode = -1;
   int massIncreases = 0;  ///< nodes whose mass the safeguard raised (summed over the run)
   int kineticResets = 0;
   int restarts = 0;        ///< increments restarted with 1.5x the masses after a divergence
@@ -59,6 +68,15 @@ struct RelaxationResult {
   double finalLambda = 0;  ///< after restarts
   std::vector<RelaxationRecord> history;
   std::string message;
+};
+
+/// A kept iterate: positions and fictitious velocities, where it was, and how good.
+struct RelaxationSnapshot {
+  std::vector<double> x, v;
+  long iteration = -1;  ///< -1: none kept
+  int increment = 0;
+  double loadFactor = 0;
+  double residualRatio = 0;
 };
 
 class DynamicRelaxation {
@@ -70,9 +88,15 @@ class DynamicRelaxation {
   RelaxationResult run(const std::function<void(int, const RelaxationResult&)>& onIncrement = {},
                        const std::function<bool()>& interrupted = {});
   const std::vector<double>& masses() const { return mass_; }
+  /// The iterate with the smallest residual ratio of the last increment attempted (its start included).
+  const RelaxationSnapshot& best() const { return best_; }
+  static constexpr long kBestEvery = 32;
 
  private:
   void forces(double loadFactor);
+  void keepIfBest(long iteration, int increment, double loadFactor, double residualRatio);
+  /// Largest-residual node and non-finite residuals at the current state (for a stopped run's report).
+  void locateResidual(RelaxationResult& r) const;
   Model& model_;
   std::vector<const Effect*> effects_;
   Constraints constraints_;
@@ -80,6 +104,7 @@ class DynamicRelaxation {
   std::vector<double> mass_;  ///< fictitious mass per node
   std::vector<double> free_;  ///< 1 for a free dof, 0 for a constrained one
   double strain_ = 0;
+  RelaxationSnapshot best_;
 };
 
 }  // namespace fsi::structure

@@ -8,8 +8,35 @@
 
 namespace fsi::structure {
 
+namespace {
+
+// "Most strained element: ..." (or the first with a non-finite strain), empty without membranes.
+std::string mostStrainedElement(const Scene& scene) {
+  if (!scene.membrane) return {};
+  const Model& m = *scene.model;
+  MembraneStressField f;
+  scene.membrane->evaluate(m.nodes.x.data(), f);
+  int worst = -1;
+  double worstStrain = -1;
+  for (int e = 0; e < m.membranes.count; ++e) {
+    const double es = f.majorStrain[e];
+    if (!std::isfinite(es)) {
+      worst = e;
+      break;
+    }
+    if (es > worstStrain) worstStrain = es, worst = e;
+  }
+  if (worst < 0) return {};
+  return std::isfinite(f.majorStrain[worst])
+             ? fmt::format("Most strained element: {} (major strain {:.3g}). ", m.describeTriangle(worst),
+                           f.majorStrain[worst])
+             : fmt::format("First element with a non-finite strain: {}. ", m.describeTriangle(worst));
+}
+
+}  // namespace
+
 std::string diagnoseInstability(const Scene& scene, const CentralDifference& cd, long goodSteps,
-                                double goodTime, bool nonFinite) {
+                                double goodTime, bool nonFinite, double created) {
   const Model& m = *scene.model;
   const Nodes& N = m.nodes;
   std::string s = fmt::format("instability at step {} (t = {:.6g} s): ", cd.steps(), cd.time());
@@ -29,35 +56,90 @@ std::string diagnoseInstability(const Scene& scene, const CentralDifference& cd,
       vmax = v2, fastest = i;
     }
   }
+  const EnergyLedger& E = cd.energy();
   if (nonFinite && firstBad >= 0) {
     s += fmt::format("non-finite state at {} node(s), first {}. ", badCount, m.describeNode(firstBad));
+  } else if (nonFinite && !std::isfinite(cd.stableDt()) && !(cd.maxDt() < 1e299)) {
+    s += "no step could be taken: no element bounds the step (no membrane or cable moves) and time.max_dt "
+         "is not set. ";
+  } else if (E.growth() > kGrowthLimit || !std::isfinite(E.growth())) {
+    s += fmt::format(
+        "the energy of the step-to-step velocity change ({:.3g} J) is {:.3g} times the energy supplied to "
+        "the structure ({:.3g} J), which a stable step cannot produce (limit {:g}): some mode is above the "
+        "stability limit; fastest {} (|v| = {:.3g} m/s). ",
+        E.kinetic - E.kineticProduct, E.growth(), E.supplied, kGrowthLimit, m.describeNode(fastest),
+        std::sqrt(vmax));
+  } else if (const double c = created >= 0 ? created : E.createdLast; !(c <= scene.time.energyTolerance)) {
+    s += fmt::format(
+        "the elements hold {:.3g} J more strain energy than the work done on them, {:.3g} of the energy "
+        "supplied (tolerance {:g}): the integration is creating energy, the step being too large for how "
+        "fast the forces change (lines snapping taut, elements switching state) or unstable; element "
+        "damping (bulk_viscosity) or a lower time.safety helps; fastest {} (|v| = {:.3g} m/s). ",
+        c * E.supplied, c, scene.time.energyTolerance, m.describeNode(fastest), std::sqrt(vmax));
   } else {
-    s += fmt::format("energy balance error {:.3g} exceeds the tolerance; fastest {} (|v| = {:.3g} m/s). ",
-                     cd.energy().balanceError(), m.describeNode(fastest), std::sqrt(vmax));
+    s += fmt::format(
+        "energy balance error {:.3g} exceeds the tolerance {:g} (the work of some force is not accounted "
+        "for); fastest {} (|v| = {:.3g} m/s). ",
+        E.balanceError(), scene.time.energyTolerance, m.describeNode(fastest), std::sqrt(vmax));
   }
-  if (scene.membrane) {
-    MembraneStressField f;
-    scene.membrane->evaluate(N.x.data(), f);
-    int worst = -1;
-    double worstStrain = -1;
-    for (int e = 0; e < m.membranes.count; ++e) {
-      const double es = f.majorStrain[e];
-      if (!std::isfinite(es)) {
-        worst = e;
-        break;
-      }
-      if (es > worstStrain) worstStrain = es, worst = e;
-    }
-    if (worst >= 0)
-      s += std::isfinite(f.majorStrain[worst])
-               ? fmt::format("Most strained element: {} (major strain {:.3g}). ", m.describeTriangle(worst),
-                             f.majorStrain[worst])
-               : fmt::format("First element with a non-finite strain: {}. ", m.describeTriangle(worst));
-  }
+  s += mostStrainedElement(scene);
   s += fmt::format(
       "Step used {:.4g} s, element stability estimate {:.4g} s. Last stable state: step {} "
       "(t = {:.6g} s).",
       cd.lastDt(), cd.stableDt(), goodSteps, goodTime);
+  return s;
+}
+
+std::string diagnoseRelaxation(const Scene& scene, const DynamicRelaxation& dr, const RelaxationResult& r) {
+  const Model& m = *scene.model;
+  const Nodes& N = m.nodes;
+  std::string s;
+  if (r.diverged)
+    s = fmt::format("dynamic relaxation diverged at iteration {} of increment {}: ", r.iterations,
+                    r.increment);
+  else
+    s = fmt::format("dynamic relaxation did not converge in {} iterations (increment {}): ", r.iterations,
+                    r.increment);
+  if (r.nonFiniteNodes > 0)
+    s += fmt::format("non-finite residual at {} node(s), first {}. ", r.nonFiniteNodes,
+                     m.describeNode(r.firstNonFiniteNode));
+  else if (r.diverged)
+    s += fmt::format("residual ‖R‖∞ {:.3g} N, {:.3g} times its {:.3g} N at the start of the attempt. ",
+                     r.residual, r.startResidual > 0 ? r.residual / r.startResidual : 0.0, r.startResidual);
+  else
+    s += fmt::format("residual ratio {:.3g}, KE/U {:.3g}. ", r.residualRatio, r.energyRatio);
+  if (r.worstNode >= 0) {
+    const int i = r.worstNode;
+    double R = 0;
+    for (int k = 0; k < 3; ++k) R += std::pow(N.fext[3 * i + k] - N.fint[3 * i + k], 2);
+    s += fmt::format("Largest residual at {} (|R| = {:.3g} N, fictitious mass {:.3g}). ", m.describeNode(i),
+                     std::sqrt(R), i < int(dr.masses().size()) ? dr.masses()[i] : 0.0);
+  }
+  s += mostStrainedElement(scene);
+  // Residual history: start, lowest, and the last few iterations.
+  const auto& h = r.history;
+  if (!h.empty()) {
+    std::size_t lo = 0;
+    for (std::size_t k = 0; k < h.size(); ++k)
+      if (std::isfinite(h[k].residualRatio) && !(h[k].residualRatio >= h[lo].residualRatio)) lo = k;
+    s += fmt::format("Residual ratio history: {:.3g} at iteration {}, lowest {:.3g} at iteration {}, then",
+                     h.front().residualRatio, h.front().iteration, h[lo].residualRatio, h[lo].iteration);
+    const std::size_t from = h.size() > 5 ? h.size() - 5 : 0;
+    for (std::size_t k = from; k < h.size(); ++k)
+      s += fmt::format(" {:.3g} ({})", h[k].residualRatio, h[k].iteration);
+    s += ". ";
+  }
+  s += fmt::format("Mass scale λ {:.3g} (started at {:.3g}; {} restart(s), {} node mass increase(s)).",
+                   r.finalLambda, r.lambda, r.restarts, r.massIncreases);
+  if (r.diverged)
+    s += scene.solver.relaxation.autoMass
+             ? " The fictitious masses are too light for the stiffness even after the safeguards: raise "
+               "solver.lambda."
+             : " The fictitious masses are too light for the stiffness: raise solver.lambda, or enable "
+               "solver.auto_mass.";
+  const RelaxationSnapshot& b = dr.best();
+  if (b.iteration >= 0)
+    s += fmt::format(" Last good state: iteration {} (residual ratio {:.3g}).", b.iteration, b.residualRatio);
   return s;
 }
 

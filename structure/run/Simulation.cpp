@@ -5,23 +5,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
-#include <fstream>
 #include <limits>
 
 #include "structure/io/ResultsWriter.hpp"
 #include "structure/io/SceneFrames.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
+#include "structure/run/RunCommon.hpp"
 
 namespace fsi::structure {
 
 namespace {
-volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onInterrupt(int) {
-  gInterrupted = 1;
-}
-
 double componentOf(const double* u, int component) {
   if (component < 3) return u[component];
   return std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
@@ -49,10 +43,6 @@ double reduceValues(const std::vector<double>& vals, ProbeSpec::Reduce r) {
   return 0.0;
 }
 }  // namespace
-
-void installInterruptHandler() {
-  std::signal(SIGINT, onInterrupt);
-}
 
 std::string toString(StopReason r) {
   switch (r) {
@@ -152,129 +142,20 @@ std::map<std::string, double> evaluateProbes(const Scene& scene) {
 
 namespace {
 
-struct Snapshot {
-  std::vector<double> x, v;
-  double time = 0, dt = 0;
-  long steps = 0;
-};
-
-}  // namespace
-
-namespace {
-
-// The parts of summary.json every solver writes.
-nlohmann::json summaryHead(const Scene& scene, const RunResult& result) {
-  nlohmann::json s;
-  s["scene"] = scene.file.string();
-  s["title"] = scene.title;
-  s["stop_reason"] = toString(result.reason);
-  s["effects"] = scene.enabledEffects;
-  s["probes"] = nlohmann::json::object();
-  for (const auto& [k, v] : result.probes) s["probes"][k] = v;
+StateSnapshot explicitState(const CentralDifference& cd, const Nodes& N) {
+  StateSnapshot s;
+  s.time = cd.time();
+  s.step = cd.steps();
+  s.dt = cd.lastDt();
+  s.x = N.x;
+  s.v = N.v;
+  const EnergyLedger& E = cd.energy();
+  s.scalars["kinetic_energy"] = E.kinetic;
+  s.scalars["strain_energy"] = E.strain;
+  s.scalars["external_work"] = E.externalWork;
+  s.scalars["internal_work"] = E.internalWork;
+  s.scalars["mass_damping_dissipation"] = E.massDamping;
   return s;
-}
-
-// Stores the summary in the result and in DIR/summary.json; reports the diagnosis on stderr.
-void writeSummary(nlohmann::json s, RunResult& result, const RunOptions& opt) {
-  if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
-  result.summary = s;
-  std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
-}
-
-void printProbesAndDiagnosis(const RunResult& result, bool quiet) {
-  if (!quiet)
-    for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
-  if (!result.diagnosis.empty()) fmt::print(stderr, "error: {}\n", result.diagnosis);
-}
-
-RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
-  using Clock = std::chrono::steady_clock;
-  namespace fs = std::filesystem;
-  fs::create_directories(opt.outDir);
-  Model& model = *scene.model;
-  Nodes& N = model.nodes;
-  const RelaxationSettings& rs = scene.solver.relaxation;
-  RunResult result;
-  if (!opt.quiet) {
-    fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
-    fmt::print(
-        "model  {} nodes, {} membrane triangles, {} cables; dynamic relaxation {} (λ = {:.3g}), ε = {:.3g}, "
-        "{} increment(s)\n",
-        N.count, model.membranes.count, model.cables.count, scene.solver.method,
-        rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
-  }
-  SceneFrames frames(scene, opt.outDir / "results.h5");
-  frames.write(0.0, 0);
-  DynamicRelaxation dr(model, scene.effectList(), scene.constraints, rs);
-  gInterrupted = 0;
-  const auto wall0 = Clock::now();
-  const RelaxationResult r = dr.run(
-      [&](int inc, const RelaxationResult& rr) {
-        frames.write(double(inc) / rs.increments, rr.iterations);
-        if (!opt.quiet)
-          fmt::print("increment {}/{} converged: iteration {}, residual ratio {:.3g}, KE/U {:.3g}\n", inc,
-                     rs.increments, rr.iterations, rr.residualRatio, rr.energyRatio);
-      },
-      [] { return gInterrupted != 0; });
-  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-  result.reason = r.converged                  ? StopReason::Static
-                  : r.diverged                 ? StopReason::Unstable
-                  : r.message == "interrupted" ? StopReason::Interrupted
-                                               : StopReason::NotConverged;
-  if (!r.converged) {
-    frames.write(1.0, r.iterations);
-    result.diagnosis = r.message;
-  }
-  result.probes = evaluateProbes(scene);
-  {
-    std::vector<std::vector<double>> cols(5);
-    for (const auto& h : r.history) {
-      cols[0].push_back(double(h.iteration));
-      cols[1].push_back(h.residualRatio);
-      cols[2].push_back(h.energyRatio);
-      cols[3].push_back(h.kinetic);
-      cols[4].push_back(h.strain);
-    }
-    frames.writer().writeTable("residual",
-                               {"iteration", "residual_ratio", "energy_ratio", "kinetic", "strain"}, cols);
-  }
-  frames.writer().close();
-
-  nlohmann::json s = summaryHead(scene, result);
-  nlohmann::json st;
-  st["solver"] = "dynamic_relaxation";
-  st["method"] = scene.solver.method;
-  st["lambda"] = r.lambda;
-  st["iterations"] = r.iterations;
-  st["converged"] = r.converged;
-  st["final_residual"] = r.residualRatio;
-  st["energy_ratio"] = r.energyRatio;
-  st["tolerance"] = rs.tolerance;
-  st["increments"] = rs.increments;
-  st["kinetic_resets"] = r.kineticResets;
-  st["mass_increases"] = r.massIncreases;
-  st["restarts"] = r.restarts;
-  st["final_lambda"] = r.finalLambda;
-  st["wall_seconds"] = wall;
-  st["seconds_per_iteration"] = r.iterations > 0 ? wall / double(r.iterations) : 0.0;
-  st["nodes"] = N.count;
-  st["dof"] = 3 * N.count;
-  st["membrane_elements"] = model.membranes.count;
-  st["cable_elements"] = model.cables.count;
-  st["strain_energy"] = r.history.empty() ? 0.0 : r.history.back().strain;
-  st["element_updates_per_second"] =
-      wall > 0 ? double(model.membranes.count + model.cables.count) * double(r.iterations) / wall : 0.0;
-  s["stats"] = st;
-  writeSummary(s, result, opt);
-  if (!opt.quiet) {
-    fmt::print(
-        "stop   {} after {} iterations ({} kinetic resets, {} node mass increases, {} restarts), {:.3g} s "
-        "wall, {:.3g} ms per iteration, residual ratio {:.3g}, KE/U {:.3g}\n",
-        toString(result.reason), r.iterations, r.kineticResets, r.massIncreases, r.restarts, wall,
-        1e3 * st["seconds_per_iteration"].get<double>(), r.residualRatio, r.energyRatio);
-  }
-  printProbesAndDiagnosis(result, opt.quiet);
-  return result;
 }
 
 }  // namespace
@@ -288,7 +169,6 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   Nodes& N = model.nodes;
   const TimeControl& tc = scene.time;
   CentralDifference cd(model, scene.effectList(), scene.constraints, tc.integrator);
-  SceneFrames frames(scene, opt.outDir / "results.h5");
   RunResult result;
 
   if (!opt.quiet) {
@@ -302,25 +182,35 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       fmt::print("mass scaling: {} elements, added mass {:.4g} kg ({:.3g}% of {:.4g} kg)\n",
                  scene.massScaling.scaledElements, scene.massScaling.addedMass,
                  100 * scene.massScaling.addedFraction(), scene.massScaling.physicalMass);
+    std::fflush(stdout);
   }
 
+  SceneFrames frames(scene, opt.outDir / "results.h5");
   frames.write(0.0, 0);
-  std::vector<std::vector<double>> energyRows(8);
+  std::vector<std::vector<double>> energyRows(11);
   std::vector<std::string> probeNames;
   for (const auto& p : scene.probes) probeNames.push_back(p.name);
   std::vector<std::vector<double>> probeRows(probeNames.size() + 1);
 
-  Snapshot good{N.x, N.v, 0.0, 0.0, 0};
+  // The last state that passed a check (its ledger too: the summary of an unstable run reports it).
+  CentralDifference::Checkpoint good;
+  cd.checkpoint(good);
   const double tEnd = tc.endTime;
   double nextOutput = scene.output.interval > 0 ? scene.output.interval : tEnd;
   int staticHits = 0;
   bool nonFinite = false;
+  double createdAtStop = -1;  // >= 0: the check at an output or the end stopped the run
   const auto wall0 = Clock::now();
   auto lastPrint = wall0;
   bool printNow = false;
-  gInterrupted = 0;
 
   while (true) {
+    // Polled before each step, so that a request pending from the set-up (or from before the run) stops
+    // at once; it is never cleared here.
+    if (interruptRequested()) {
+      result.reason = StopReason::Interrupted;
+      break;
+    }
     const double limit = std::min(nextOutput, tEnd);
     const bool monitor = (cd.steps() + 1) % tc.monitorEvery == 0;
     if (!cd.step(limit, monitor)) {
@@ -328,23 +218,33 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       result.reason = StopReason::Unstable;
       break;
     }
-    if (monitor) {
-      const EnergyLedger& E = cd.energy();
-      const double err = E.balanceError();
-      for (auto [i, v] : {std::pair{0, cd.time()},
+    // Every step (a few flops on the sums the step gathered): energy growth (an unstable step) and the
+    // bookkeeping balance, so that no run, however short, and no output or end of run escapes them; on
+    // monitoring steps, where the strain energy is known, also the energy created in the elements.
+    const EnergyLedger& E = cd.energy();
+    const double err = E.balanceError(), growth = E.growth(), created = monitor ? E.createdLast : 0.0;
+    const bool unstable =
+        !(growth <= kGrowthLimit) || !(err <= tc.energyTolerance) || !(created <= tc.energyTolerance);
+    if (monitor || unstable) {
+      for (auto [i, v] : {std::pair{0, cd.time() - cd.lastDt()},  // the energies are those of step n
                           {1, E.kinetic},
                           {2, E.strain},
                           {3, E.externalWork},
                           {4, E.internalWork},
                           {5, E.massDamping},
                           {6, err},
-                          {7, cd.lastDt()}})
+                          {7, cd.lastDt()},
+                          {8, E.kineticProduct},
+                          {9, growth},
+                          {10, created}})
         energyRows[i].push_back(v);
-      if (err > tc.energyTolerance) {
-        result.reason = StopReason::Unstable;
-        break;
-      }
-      good = {N.x, N.v, cd.time(), cd.lastDt(), cd.steps()};
+    }
+    if (unstable) {
+      result.reason = StopReason::Unstable;
+      break;
+    }
+    if (monitor) {
+      cd.checkpoint(good);
       if (tc.untilStatic) {
         const bool still = E.strain > 0 && E.kinetic < tc.staticTolerance * E.strain;
         staticHits = still ? staticHits + 1 : 0;
@@ -355,7 +255,18 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       }
     }
     const bool atOutput = cd.time() >= limit * (1 - 1e-12) && limit == nextOutput;
-    if (atOutput && scene.output.interval > 0 && cd.time() < tEnd * (1 - 1e-12)) {
+    const bool atEnd = cd.time() >= tEnd * (1 - 1e-12);
+    // At every output and at the end, the energy created in the elements is checked whatever the monitoring
+    // interval (a short run, or one ended between monitoring steps, would otherwise skip it).
+    if ((atOutput && scene.output.interval > 0) || atEnd) {
+      const double c = cd.createdAtCurrentState();
+      if (!(c <= tc.energyTolerance)) {
+        createdAtStop = c;
+        result.reason = StopReason::Unstable;
+        break;
+      }
+    }
+    if (atOutput && scene.output.interval > 0 && !atEnd) {
       frames.write(cd.time(), cd.steps());
       auto probes = evaluateProbes(scene);
       probeRows[0].push_back(cd.time());
@@ -363,12 +274,8 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       nextOutput += scene.output.interval;
       printNow = true;  // a progress line per output frame too (throttled below), so short runs show progress
     }
-    if (cd.time() >= tEnd * (1 - 1e-12)) {
+    if (atEnd) {
       result.reason = tc.untilStatic ? StopReason::NotConverged : StopReason::EndTime;
-      break;
-    }
-    if (gInterrupted) {
-      result.reason = StopReason::Interrupted;
       break;
     }
     if (!opt.quiet && (printNow || (cd.steps() & 255) == 0)) {
@@ -377,7 +284,6 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       if (since >= opt.progressSeconds || (printNow && since >= 0.02 * opt.progressSeconds)) {
         lastPrint = now;
         const double wall = std::chrono::duration<double>(now - wall0).count();
-        const EnergyLedger& E = cd.energy();
         const double eta = wall * (tEnd - cd.time()) / std::max(cd.time(), 1e-300);
         fmt::print(
             "step {:>9}  t {:.5g}/{:.5g} s  dt {:.3g} s  KE {:.4g} J  U {:.4g} J  {}  {:.0f} s left{}\n",
@@ -394,30 +300,24 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   const long steps = cd.steps();
 
   if (result.reason == StopReason::Unstable) {
-    result.diagnosis = diagnoseInstability(scene, cd, good.steps, good.time, nonFinite);
+    result.diagnosis = diagnoseInstability(scene, cd, good.steps, good.time, nonFinite, createdAtStop);
     // Keep the last good state: on disk as a restartable state and as the last frame of the results.
-    StateSnapshot snap;
-    snap.time = good.time;
-    snap.step = good.steps;
-    snap.dt = good.dt;
-    snap.x = good.x;
-    snap.v = good.v;
-    writeState(opt.outDir / "last_good_state.h5", snap);
-    cd.restore(good.x, good.v, good.time, good.dt, good.steps);
-    frames.write(good.time, good.steps);
+    cd.restore(good);
+    cd.evaluateForces(true);
+    writeStopState(opt, explicitState(cd, N), result);
+    if (!result.stateFile.empty()) result.diagnosis += " Saved in " + result.stateFile.string() + ".";
   } else {
+    cd.evaluateForces(true);  // current forces for reactions, current strain energy for the summary
     if (result.reason == StopReason::Interrupted) {
-      StateSnapshot snap;
-      snap.time = cd.time();
-      snap.step = steps;
-      snap.dt = cd.lastDt();
-      snap.x = N.x;
-      snap.v = N.v;
-      writeState(opt.outDir / "interrupted_state.h5", snap);
+      writeStopState(opt, explicitState(cd, N), result);
+      result.diagnosis =
+          steps == 0 ? fmt::format("stopped during set-up, before the first step (t = {:.6g} s)", cd.time())
+                     : fmt::format("stopped at step {} (t = {:.6g} s)", steps, cd.time());
+      result.diagnosis += result.stateFile.empty() ? "; the state could not be saved"
+                                                   : "; state saved in " + result.stateFile.string();
     }
-    frames.write(cd.time(), steps);
   }
-  cd.evaluateForces(true);  // current forces for reactions, current strain energy for the summary
+  frames.write(cd.time(), cd.steps());
   result.probes = evaluateProbes(scene);
   probeRows[0].push_back(cd.time());
   for (std::size_t i = 0; i < probeNames.size(); ++i)
@@ -428,7 +328,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
     frames.writer().writeTable("probes", cols, probeRows);
     frames.writer().writeTable("energy",
                                {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping",
-                                "balance_error", "dt"},
+                                "balance_error", "dt", "kinetic_product", "energy_growth", "energy_created"},
                                energyRows);
   }
   frames.writer().close();
@@ -451,6 +351,9 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   st["mass_damping_dissipation"] = E.massDamping;
   st["viscous_dissipation"] = E.viscousDissipation();
   st["energy_balance_error"] = E.balanceError();
+  st["energy_error_physical"] = E.physicalBalanceError();
+  st["energy_growth_max"] = E.maxGrowth;
+  st["energy_created_max"] = E.maxCreated;
   st["last_dt"] = cd.lastDt();
   st["stable_dt"] = cd.stableDt();
   st["added_mass"] = scene.massScaling.addedMass;

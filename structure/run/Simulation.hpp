@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "structure/run/Interrupt.hpp"
 #include "structure/scene/Scene.hpp"
 
 namespace fsi::structure {
@@ -26,17 +27,19 @@ struct RunResult {
   StopReason reason = StopReason::EndTime;
   std::map<std::string, double> probes;
   nlohmann::json summary;
-  std::string diagnosis;  ///< non-empty when unstable
+  std::string diagnosis;            ///< what stopped the run (unstable, interrupted, not converged)
+  std::filesystem::path stateFile;  ///< last_good_state.h5 / interrupted_state.h5 when one was written
   int exitCode() const;
 };
 
 /// Evaluates every probe of the scene at the model's current state (forces must be current for reactions).
 std::map<std::string, double> evaluateProbes(const Scene& scene);
 
-/// Runs to the end (or static state, instability, interrupt); writes results into options.outDir.
+/// Runs to the end (or static state, instability, interrupt); writes results into options.outDir. An
+/// interrupt request (Interrupt.hpp) is honoured during set-up, at every step and every DR iteration.
 RunResult runSimulation(Scene& scene, const RunOptions& options);
 
-/// Installs a SIGINT handler that asks running simulations to stop cleanly.
-void installInterruptHandler();
+/// Dynamic relaxation of a `solver: {type: dynamic_relaxation}` scene (runSimulation dispatches to it).
+RunResult runRelaxation(Scene& scene, const RunOptions& options);
 
 }  // namespace fsi::structure

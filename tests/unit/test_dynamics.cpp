@@ -71,7 +71,9 @@ TEST(CentralDifference, UndampedFreeVibrationConservesEnergy) {
 }
 
 TEST(CentralDifference, EnergyBalanceErrorConvergesAtSecondOrder) {
-  // The same drum for the same simulated time with two step sizes: the balance error must drop ~4x.
+  // The same drum for the same simulated time with two step sizes: the balance error must drop ~4x. The
+  // bookkeeping balance is exact (test_energy_ledger.cpp); the balance of the physical energy (kinetic energy
+  // of the mid-step velocity) carries the scheme's O(Δt²) error.
   double err[2];
   for (int k = 0; k < 2; ++k) {
     Drum d;
@@ -81,7 +83,7 @@ TEST(CentralDifference, EnergyBalanceErrorConvergesAtSecondOrder) {
     CentralDifference cd(d.model, {&mf}, d.constraints, s);
     const int n = k == 0 ? 2000 : 4000;
     for (int i = 1; i <= n; ++i) ASSERT_TRUE(cd.step(1e9, i == n));
-    err[k] = cd.energy().balanceError();
+    err[k] = cd.energy().physicalBalanceError();
   }
   EXPECT_GT(err[0] / err[1], 3.0) << err[0] << " " << err[1];
   EXPECT_LT(err[0] / err[1], 5.0) << err[0] << " " << err[1];

@@ -1,5 +1,6 @@
 #include "coupling/StructureParticipant.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "coupling/interface/SceneInterface.hpp"
@@ -152,9 +153,8 @@ void StructureParticipant::writeState(const std::filesystem::path& file,
   structure::StateSnapshot s;
   s.arrays = arrays;
   const structure::CentralDifference::Checkpoint c = cd_->checkpoint();
-  const structure::EnergyLedger& E = c.ledger;
-  s.arrays[kLedgerKey] = {E.kinetic,      E.initialKinetic, E.strain,     E.externalWork,
-                          E.internalWork, E.massDamping,    c.pendingExt, c.pendingInt};
+  const auto E = c.ledger.values();
+  s.arrays[kLedgerKey] = std::vector<double>(E.begin(), E.end());
   s.time = cd_->time();
   s.step = cd_->steps();
   s.dt = cd_->lastDt();
@@ -176,18 +176,15 @@ std::map<std::string, std::vector<double>> StructureParticipant::readState(
   if (ledger != arrays.end()) {
     // Energies continue from the state's (a state file without them restarts the ledger at zero).
     const std::vector<double>& L = ledger->second;
-    if (L.size() != 8)
+    constexpr std::size_t nFields = structure::EnergyLedger::kFields;
+    if (L.size() != nFields)
       throw InputError(file.string() + ": " + kLedgerKey + " has " + std::to_string(L.size()) +
-                       " values, expected 8");
+                       " values, expected " + std::to_string(nFields) +
+                       " (a state written by another version)");
     structure::CentralDifference::Checkpoint c = cd_->checkpoint();
-    c.ledger.kinetic = L[0];
-    c.ledger.initialKinetic = L[1];
-    c.ledger.strain = L[2];
-    c.ledger.externalWork = L[3];
-    c.ledger.internalWork = L[4];
-    c.ledger.massDamping = L[5];
-    c.pendingExt = L[6];
-    c.pendingInt = L[7];
+    std::array<double, nFields> values{};
+    std::copy(L.begin(), L.end(), values.begin());
+    c.ledger.setValues(values);
     cd_->restore(c);
     arrays.erase(ledger);
   }

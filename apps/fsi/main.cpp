@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -33,6 +34,16 @@ using namespace fsi::structure;
 
 namespace {
 
+// SIGINT asks a run to stop cleanly (exit 130 with the state saved). The handler is installed from the
+// executable's pre-initialisation array, before the shared libraries' static initialisers run, so that a
+// Ctrl-C from the first moments is a request, never a kill. Only the loader's mapping and relocation of the
+// libraries (a few tens of ms) precede it.
+extern "C" void fsiEarlyInterruptHandler(int, char**, char**) {
+  installInterruptHandler();
+}
+__attribute__((section(".preinit_array"), used)) void (*const fsiPreinit)(int, char**,
+                                                                          char**) = fsiEarlyInterruptHandler;
+
 // The structural side of a coupled scene has no end time of its own (the flow solver sets it); run alone it
 // would start with an infinite time to go, so it needs one given.
 void requireEndTime(const Scene& scene) {
@@ -45,6 +56,7 @@ void requireEndTime(const Scene& scene) {
 
 int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets,
                bool quiet) {
+  installInterruptHandler();  // (already installed before main; repeated in case a library replaced it)
   Scene scene = loadScene(scenePath, sets);
   requireEndTime(scene);
   // An output directory that cannot be made is bad input too: say so before the run, not as a crash in it.
@@ -56,7 +68,6 @@ int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector
   RunOptions opt;
   opt.outDir = out;
   opt.quiet = quiet;
-  installInterruptHandler();
   const RunResult r = runSimulation(scene, opt);
   if (!quiet)
     fmt::print("results {}/results.xdmf (open in ParaView), summary {}/summary.json\n", out.string(),
@@ -97,6 +108,10 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
     opt.outDir = out / fmt::format("check{}", i);
     opt.quiet = quiet;
     const RunResult r = runSimulation(scene, opt);
+    if (r.reason == StopReason::Interrupted) {
+      fmt::print("interrupted: the remaining checks were not run\n");
+      return r.exitCode();
+    }
     for (const std::string& probe : expects.keys()) {
       YamlMap e = expects.map(probe);
       const double value = e.number("value");
@@ -123,6 +138,9 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
                     const std::string& variant, int quadratureLevel, const std::vector<std::string>& sets) {
+  // No run to stop cleanly here: Ctrl-C ends the program as usual (and one pressed during start-up does).
+  std::signal(SIGINT, SIG_DFL);
+  if (interruptRequested()) return 130;
   if (!sets.empty() && !fsi::coupling::isSceneFile(src) && !fsi::coupling::isSceneFile(dst))
     throw fsi::InputError("--set applies to a structure scene (SCENE.yaml), but neither side is one");
   if (quadratureLevel < 1)

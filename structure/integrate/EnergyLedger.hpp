@@ -19,6 +19,7 @@
 // growth() compares δ with the energy ever supplied to the structure.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -42,6 +43,21 @@ struct EnergyLedger {
   double maxGrowth = 0;    ///< largest growth() seen
   double createdLast = 0;  ///< created() at the last step that evaluated the strain energy
   double maxCreated = 0;   ///< largest of those
+
+  /// Every field, in declaration order: what a restart state stores so the bookkeeping continues exactly.
+  static constexpr int kFields = 16;
+  std::array<double, kFields> values() const {
+    return {kinetic,      kineticProduct, initialKinetic, startKick,  strain,     initialStrain,
+            externalWork, internalWork,   massDamping,    pendingExt, pendingInt, pendingDamp,
+            supplied,     maxGrowth,      createdLast,    maxCreated};
+  }
+  void setValues(const std::array<double, kFields>& a) {
+    double* f[kFields] = {&kinetic,     &kineticProduct, &initialKinetic, &startKick,
+                          &strain,      &initialStrain,  &externalWork,   &internalWork,
+                          &massDamping, &pendingExt,     &pendingInt,     &pendingDamp,
+                          &supplied,    &maxGrowth,      &createdLast,    &maxCreated};
+    for (int i = 0; i < kFields; ++i) *f[i] = a[std::size_t(i)];
+  }
 
   /// W_int − (U − U0): the viscous (β, bulk) dissipation.
   double viscousDissipation() const { return internalWork - (strain - initialStrain); }

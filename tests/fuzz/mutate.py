@@ -174,17 +174,23 @@ KEY_VALUE_RE = re.compile(rb"(?P<key>[A-Za-z_][\w]*)[ \t]*:[ \t]+(?P<val>[^,{}\[
 KEY_RE = re.compile(rb"(?P<key>[A-Za-z_][\w]*)[ \t]*:(?=[ \t\n])")
 
 
-def _yaml_paths(node, prefix=()):
-    """Every path in a parsed YAML tree (dict keys and list indices), leaves and inner nodes."""
+def _yaml_paths(node, prefix=(), seen=None):
+    """Every path in a parsed YAML tree (dict keys and list indices), leaves and inner nodes. A node
+    reached again through an alias is listed once: a "billion laughs" tree stays small."""
+    seen = set() if seen is None else seen
     out = []
+    if isinstance(node, (dict, list)):
+        if id(node) in seen:
+            return out
+        seen.add(id(node))
     if isinstance(node, dict):
         for k, v in node.items():
             out.append((prefix + (k,), v))
-            out.extend(_yaml_paths(v, prefix + (k,)))
+            out.extend(_yaml_paths(v, prefix + (k,), seen))
     elif isinstance(node, list):
         for i, v in enumerate(node):
             out.append((prefix + (i,), v))
-            out.extend(_yaml_paths(v, prefix + (i,)))
+            out.extend(_yaml_paths(v, prefix + (i,), seen))
     return out
 
 
@@ -400,7 +406,8 @@ def gmsh_section_header(rng, data):
     name = m.group(1)
     kind = rng.randrange(5)
     if kind == 0:
-        new = b"$" + pick(rng, [name[:-1], name + b"s", name.lower(), b"End" + name, name[3:] if name.startswith(b"End") else b"End" + name])
+        flipped = name[3:] if name.startswith(b"End") else b"End" + name  # $Nodes <-> $EndNodes
+        new = b"$" + pick(rng, [name[:-1], name + b"s", name.lower(), b"End" + name, flipped])
         out = _replace_match(data, m, new)
         desc = f"section header {name.decode()} -> {new.decode()}"
     elif kind == 1:
@@ -506,7 +513,8 @@ def gmsh_element_line(rng, data):
     kind = rng.randrange(3)
     if kind == 0 and len(tokens) > 1:
         i = rng.randrange(len(tokens))
-        tokens[i] = str(special_integer(rng, int(tokens[i]) if tokens[i].lstrip(b"-").isdigit() else None)).encode()
+        old = int(tokens[i]) if tokens[i].lstrip(b"-").isdigit() else None
+        tokens[i] = str(special_integer(rng, old)).encode()
         desc = f"element line token {i}"
     elif kind == 1:
         del tokens[rng.randrange(len(tokens))]

@@ -567,14 +567,15 @@ def save_failure(case, work, outcome, fails, seconds):
     shutil.rmtree(dest, ignore_errors=True)
     shutil.copytree(case.dir, dest, ignore=shutil.ignore_patterns("out"))
     cmd = " ".join(shlex.quote(c) for c in case.cmd)
-    (dest / "repro.sh").write_text(
+    # Arguments may hold bytes that are not UTF-8 (surrogate-escaped): written back as those bytes.
+    (dest / "repro.sh").write_bytes((
         "#!/bin/sh\n"
         f"# {case.kind} {case.index}, fuzz seed {case.seed}, from {case.seed_name}\n"
         + "".join(f"# mutation: {m}\n" for m in case.mutations)
         + f"# outcome: {outcome} ({'; '.join(fails)}), {seconds:.2f} s\n"
         + f"# the fuzz test's limits: {MEMORY_LIMIT >> 20} MiB of address space, no core file\n"
         + f'ulimit -v {MEMORY_LIMIT >> 10}; ulimit -c 0\n'
-        + 'cd "$(dirname "$0")" && rm -rf out && exec ' + cmd + "\n")
+        + 'cd "$(dirname "$0")" && rm -rf out && exec ' + cmd + "\n").encode("utf-8", "surrogateescape"))
     (dest / "repro.sh").chmod(0o755)
     return dest
 
@@ -599,6 +600,7 @@ def main():
     ap.add_argument("--keep", action="store_true", help="keep the folders of inputs that passed")
     args = ap.parse_args()
 
+    sys.stdout.reconfigure(errors="backslashreplace")  # messages may quote bytes that are not UTF-8
     fsi = str(Path(args.fsi).resolve())
     work = args.work.resolve()
     work.mkdir(parents=True, exist_ok=True)
@@ -628,6 +630,22 @@ def main():
     log = open(work / "results.jsonl", "w")
 
     def one(item):
+        try:
+            return one_checked(item)
+        except Exception:  # noqa: BLE001 - a bug of this driver must not end a long run: report it, go on
+            import traceback
+            text = traceback.format_exc()
+            rec = {"kind": str(item[0]) if isinstance(item, tuple) else item.kind,
+                   "index": item[1] if isinstance(item, tuple) else item.index, "seed": args.seed,
+                   "outcome": "driver error", "failures": ["fuzz driver error"],
+                   "signature": "fuzz driver error | " + text.strip().splitlines()[-1][:160], "stderr": text}
+            with lock:
+                print(f"DRIVER ERROR on {item if isinstance(item, tuple) else item.dir}:\n{text}", flush=True)
+                results.append(rec)
+                log.write(json.dumps(rec) + "\n")
+            return rec
+
+    def one_checked(item):
         case = build_case(*item, args.seed, seeds, work, fsi) if isinstance(item, tuple) else item
         case.detail = ""
         rc, timed_out, seconds, stdout, stderr = run_case(case, args.timeout)

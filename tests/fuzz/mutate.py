@@ -346,7 +346,8 @@ def scene_set_override(rng, data):
         arg = pick(rng, ["", "=", "=1", "noequals", "a..b=1", ".=1", "title=", "title=[", "title={",
                          "time={end: 0}", "meshes=[]", "materials=~", "constraints.0=", "effects=1",
                          "x" * 100000 + "=1", "title=\udcff", "constraints.-0.fix=z", "a.b.c.d.e.f.g=1"])
-    return data, f"--set {arg!r}", [arg]
+    shown = arg if len(arg) <= 120 else f"{arg[:60]}...({len(arg)} characters)...{arg[-20:]}"
+    return data, f"--set {shown!r}", [arg]
 
 
 SCENE_MUTATIONS = [

@@ -1,0 +1,14 @@
+// Unit square in z = 0 with a coarse triangle mesh; physical groups so readers resolve names.
+Point(1) = {0, 0, 0, 0.34};
+Point(2) = {1, 0, 0, 0.34};
+Point(3) = {1, 1, 0, 0.34};
+Point(4) = {0, 1, 0, 0.34};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Surface("sheet") = {1};
+Physical Curve("rim") = {1, 2, 3, 4};
+Physical Point("corner") = {1};

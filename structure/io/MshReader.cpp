@@ -166,8 +166,7 @@ MshContent parse(const fs::path& file, std::string bytes) {
                     "new.msh",
                     mesh.file));
   if (first != "$MeshFormat")
-    throw InputError(fmt::format("{}: not a Gmsh MSH mesh (it does not start with $MeshFormat). {}",
-                                 mesh.file, meshItFirst(file)));
+    in.fail(fmt::format("not a Gmsh MSH mesh (it does not start with $MeshFormat). {}", meshItFirst(file)));
   in.setSection("MeshFormat");
   const std::string_view versionText = in.token();
   double version = 0;

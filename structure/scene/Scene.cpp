@@ -415,6 +415,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
 
   // Meshes.
   std::vector<MeshInput> inputs;
+  // Where each mesh came from, for the model builder's messages (a degenerate triangle of mesh 'canopy' is
+  // in canopy.msh, or in the scene's generator entry).
+  std::vector<std::pair<std::string, std::string>> meshOrigins;
   {
     YamlMap meshes = top.map("meshes");
     if (meshes.keys().empty()) meshes.fail("at least one mesh is needed");
@@ -423,6 +426,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       MeshInput in;
       in.mesh = meshFromScene(m, name, dir);
       in.mesh.name = name;
+      meshOrigins.emplace_back(name, m.has("file") ? (dir / m.string("file")).string() + " (" +
+                                                         locate(m.file(), m.node(), "meshes." + name) + ")"
+                                                   : locate(m.file(), m.node(), "meshes." + name));
       if (m.has("material")) in.membraneMaterial = materialRef(m, "material", membraneIdx, "membrane");
       if (m.has("cable_material")) in.cableMaterial = materialRef(m, "cable_material", cableIdx, "cable");
       m.finish({"file", "generator", "material", "cable_material"});
@@ -433,7 +439,15 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       inputs.push_back(std::move(in));
     }
   }
-  scene.model = std::make_unique<Model>(buildModel(std::move(inputs), membraneMats, cableMats));
+  try {
+    scene.model = std::make_unique<Model>(buildModel(std::move(inputs), membraneMats, cableMats));
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    std::string where = scene.file.string();
+    for (const auto& [name, origin] : meshOrigins)
+      if (what.find("mesh '" + name + "'") != std::string::npos) where = origin;
+    throw InputError(where + ": " + what);
+  }
   Model& model = *scene.model;
 
   // Solver: explicit dynamics (default) or dynamic relaxation.

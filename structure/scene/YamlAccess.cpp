@@ -256,6 +256,7 @@ YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
     : node_(node),
       file_(std::move(file)),
       path_(std::move(path)) {  // YAML::Node is a handle: copies are cheap
+  if (node_) origin_ = node_;
   if (!node_ || node_.IsNull()) {
     node_ = YAML::Node(YAML::NodeType::Map);
   } else if (!node_.IsMap()) {
@@ -294,7 +295,10 @@ YAML::Node YamlMap::raw(const std::string& key) const {
 }
 
 void YamlMap::fail(const std::string& message) const {
-  throw InputError(locate(file_, node_, path_) + ": " + message);
+  // An empty value (`probes: {p: }`) became an empty map without a place in the file: locate it by the
+  // value as it was read.
+  const bool placed = node_ && !node_.Mark().is_null();
+  throw InputError(locate(file_, placed || !origin_ ? node_ : origin_, path_) + ": " + message);
 }
 void YamlMap::failAt(const std::string& key, const std::string& message) const {
   const YAML::Node n = node_[key];
@@ -384,7 +388,12 @@ std::vector<std::string> YamlMap::strings(const std::string& key) const {
   return out;
 }
 YamlMap YamlMap::map(const std::string& key) const {
-  return YamlMap(require(key), file_, childPath(key));
+  YamlMap child(require(key), file_, childPath(key));
+  if (child.node_.Mark().is_null())
+    // An empty value (`generator:`) has no place in the file of its own: messages point at its key.
+    for (const auto& kv : node_)
+      if (kv.first.IsScalar() && kv.first.Scalar() == key) child.origin_ = kv.first;
+  return child;
 }
 
 void YamlMap::finish(const std::vector<std::string>& validKeys) const {

@@ -78,6 +78,7 @@ class YamlMap {
  private:
   YAML::Node require(const std::string& key) const;
   YAML::Node node_;
+  YAML::Node origin_;  ///< the node as read (an empty value keeps its place in the file for messages)
   std::string file_, path_;
   mutable std::set<std::string> used_;
 };

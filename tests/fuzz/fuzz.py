@@ -449,8 +449,12 @@ def _energy_bound(tree):
 
 
 # Errors about the file as a whole or about a command-line argument: no line to cite.
+# Whole-file properties: no single line is at fault (an empty file, a missing group, a mesh whose extent is
+# too large for the projection's arithmetic); and the model builder's geometric checks, which name the
+# element and node by their tags in the file (the builder works on merged meshes, not on file lines).
 LINE_EXEMPT = re.compile(r"no physical \w+ group|contains no line, triangle or quadrangle|no such file|cannot open"
-                         r"|not readable|is empty|no patch")
+                         r"|not readable|is empty|no patch|squared areas overflow; rescale the meshes"
+                         r"|is degenerate \(zero|belongs to no element and has no mass")
 
 
 def _cites_line(err, name):

@@ -223,6 +223,13 @@ TEST(SceneInput, ProbeOrEffectWithoutItsSelectorIsLocated) {
   EXPECT_TRUE(has(e, "constraints[0]: missing required key 'nodes'")) << e;
 }
 
+TEST(SceneInput, AnEmptyValueIsLocatedAtItsKey) {
+  // `tip:` with nothing after it is a null node without a place in the file; the message used to say only
+  // "case.yaml: probes.tip: ..." (found by the fuzz test).
+  const std::string e = errorOf(drumScene(kTime + "probes:\n  tip:\n"));
+  EXPECT_TRUE(has(e, "case.yaml:11:3: probes.tip: missing required key 'type'")) << e;
+}
+
 TEST(SceneInput, AChainOfSetsIsNotACycle) {
   // set_k = set_{k-1} plus node k+1: 22 sets deep used to be reported as a cycle.
   std::string yaml = drumScene(kTime) + "sets:\n  set0: {ids: [1], mesh: sheet}\n";

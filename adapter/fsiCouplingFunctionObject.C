@@ -1,13 +1,19 @@
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
 #include <map>
+#include <optional>
+#include <string>
 
-#include "OFstream.H"
 #include "addToRunTimeSelectionTable.H"
+#include "coupling/CouplingCsv.hpp"
+#include "coupling/CouplingTiming.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/mapping/L2Projection.hpp"
+#include "coupling/scheme/CouplingOptions.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
 #include "fsiCouplingFunctionObject.H"
+#include "fsiCouplingOptions.H"
 #include "fsiFloatingPointTraps.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
 #include "fvcGrad.H"
@@ -30,33 +36,18 @@ double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
-fsi::coupling::MassMatrix projectionKind(const dictionary& dict) {
-  const word kind = dict.lookupOrDefault<word>("projection", "consistent");
-  if (kind == "consistent") return fsi::coupling::MassMatrix::Consistent;
+fsi::coupling::MassMatrix projectionKind(const word& kind) {
   if (kind == "lumped") return fsi::coupling::MassMatrix::Lumped;
   if (kind == "dual") return fsi::coupling::MassMatrix::Dual;
-  FatalIOErrorInFunction(dict) << "fsiCoupling: projection " << kind
-                               << " unknown; valid: consistent lumped dual" << exit(FatalIOError);
-  return fsi::coupling::MassMatrix::Consistent;
+  return fsi::coupling::MassMatrix::Consistent;  // the option table allows only these three
 }
 
-fsi::coupling::AccelerationConfig accelerationConfig(const dictionary& dict) {
-  fsi::coupling::AccelerationConfig a;
-  const word kind = dict.lookupOrDefault<word>("acceleration", "IQN-ILS");
-  if (kind == "constant")
-    a.kind = fsi::coupling::AccelerationKind::Constant;
-  else if (kind == "aitken")
-    a.kind = fsi::coupling::AccelerationKind::Aitken;
-  else if (kind == "IQN-ILS")
-    a.kind = fsi::coupling::AccelerationKind::IqnIls;
-  else
-    FatalIOErrorInFunction(dict) << "fsiCoupling: acceleration " << kind
-                                 << " unknown; valid: constant aitken IQN-ILS" << exit(FatalIOError);
-  a.omega = dict.lookupOrDefault<scalar>("omega", 0.5);
-  a.aitken.initialOmega = a.omega;
-  a.iqn.initialOmega = dict.lookupOrDefault<scalar>("omega", 0.1);
-  a.iqn.reuseSteps = dict.lookupOrDefault<label>("reuse", 0);
-  return a;
+// h:mm:ss, for wall time and ETA on the progress line.
+std::string hms(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  return buf;
 }
 
 }  // namespace
@@ -70,10 +61,16 @@ fsiCoupling::~fsiCoupling() = default;
 
 bool fsiCoupling::read(const dictionary& dict) {
   fvMeshFunctionObject::read(dict);
-  patches_ = wordList(dict.lookup("patches"));
-  rho_ = dict.get<scalar>("rho");
-  pRef_ = dict.lookupOrDefault<scalar>("pRef", 0.0);
-  viscous_ = dict.lookupOrDefault<Switch>("viscous", false);
+  // Every key and value against the option table first: nothing below reads an unchecked entry.
+  options_ = std::make_unique<fsi::coupling::OptionValues>(readCouplingOptions(dict));
+  const fsi::coupling::OptionValues& o = *options_;
+  if (!structure_ && !scheme_ && interfaces_.empty())
+    for (const std::string& w : o.warnings()) Info << "[fsi] warning: " << w.c_str() << endl;
+  patches_.clear();
+  for (const std::string& p : o.words("patches")) patches_.append(word(p));
+  rho_ = o.real("rho");
+  pRef_ = o.real("pRef");
+  viscous_ = o.flag("viscous");
   patchIDs_.setSize(patches_.size());
   forAll(patches_, i) {
     patchIDs_[i] = mesh_.boundaryMesh().findPatchID(patches_[i]);
@@ -88,7 +85,16 @@ bool fsiCoupling::read(const dictionary& dict) {
         << "the static pressure p of an incompressible solver such as pimpleFoam" << exit(FatalIOError);
   if (!mesh_.foundObject<volScalarField>("p"))
     FatalIOErrorInFunction(dict) << "fsiCoupling: no pressure field p" << exit(FatalIOError);
-  if (dict.found("scene") && !structure_ && !scheme_ && interfaces_.empty()) startCoupling(dict);
+  if (o.given("scene") && !structure_ && !scheme_ && interfaces_.empty()) {
+    // The safety net: whatever start-up throws ends the run with a message naming the dictionary.
+    try {
+      startCoupling(dict);
+    } catch (const Foam::error&) {
+      throw;
+    } catch (const std::exception& e) {
+      FatalIOErrorInFunction(dict) << "fsiCoupling: " << e.what() << exit(FatalIOError);
+    }
+  }
   return true;
 }
 
@@ -154,121 +160,161 @@ void fsiCoupling::checkSetUp(const dictionary& dict) const {
 }
 
 void fsiCoupling::startCoupling(const dictionary& dict) {
+  const fsi::coupling::OptionValues& o = *options_;
   checkSetUp(dict);
-  scene_ = dict.get<fileName>("scene").expand();
+  const fileName sceneGiven = o.text("scene");
+  scene_ = fileName(sceneGiven).expand();
   if (!scene_.isAbsolute()) scene_ = time_.globalPath() / scene_;
-  const word scheme = dict.lookupOrDefault<word>("scheme", "staggered");
-  implicit_ = scheme == "implicit";
-  if (scheme != "staggered" && scheme != "implicit")
-    FatalIOErrorInFunction(dict) << "fsiCoupling: scheme " << scheme << " unknown; valid: staggered implicit"
-                                 << exit(FatalIOError);
-  verifyCheckpoint_ = dict.lookupOrDefault<Switch>("verifyCheckpoint", false);
-  const label subcycles = dict.lookupOrDefault<label>("subcycles", 1);
+  implicit_ = o.text("scheme") == "implicit";
+  verifyCheckpoint_ = o.flag("verifyCheckpoint");
   const scalar dt = time_.deltaTValue();
-  const scalar endTime = time_.endTime().value();
+  endTime_ = time_.endTime().value();
+  segmentStart_ = time_.value();
   const auto& pd = mesh_.lookupObject<pointVectorField>("pointDisplacement");
   for (const label id : patchIDs_) interfaces_.emplace_back(new fsiInterfacePatch(mesh_, id, pd));
-  checkpoint_.reset(new fsiFluidCheckpoint(
-      mesh_, verifyCheckpoint_ || dict.lookupOrDefault<Switch>("restoreMeshPoints", true)));
+  // restoreMeshPoints is an option of the implicit scheme only (the staggered one never repeats a step).
+  checkpoint_.reset(
+      new fsiFluidCheckpoint(mesh_, verifyCheckpoint_ || !implicit_ || o.flag("restoreMeshPoints")));
+  // Progress: every window of a short run, about 40 lines for a long one; windows counted from t = 0.
+  const label windowsTotal = max(label(1), label(std::lround(endTime_ / dt)));
+  progressEvery_ =
+      o.given("progress") ? label(o.integer("progress")) : max(label(1), (windowsTotal + 39) / 40);
 
   const fileName outDir = time_.globalPath() / "structure";
+  const bool fresh = time_.value() <= 0.5 * dt;
+  const scalar t0 = namedTime(time_.value());
   std::map<std::string, std::vector<double>> restartArrays;
   if (Pstream::master()) {
     const fsiFloatingPointTrapsOff noTraps;
+    // Every construction below reports a bad input through an exception: none may leave the solver
+    // uncaught (Foam::error, which derives from std::exception too, passes through unchanged).
     try {
-      structure_ = std::make_unique<fsi::coupling::StructureParticipant>(std::string(scene_));
-    } catch (const std::exception& e) {
-      FatalIOErrorInFunction(dict) << "fsiCoupling: structure scene " << scene_ << ": " << e.what()
-                                   << exit(FatalIOError);
-    }
-    structure_->setMinSubcycles(subcycles);
-    // Projection structure -> each fluid patch, on the reference geometry.
-    fsi::coupling::ProjectionOptions opt;
-    opt.mass = projectionKind(dict);
-    opt.tolerance =
-        dict.lookupOrDefault<scalar>("mapTolerance", 0.25 * structure_->interfaceMesh().meanEdgeLength());
-    for (const auto& ip : interfaces_) {
-      maps_.emplace_back(
-          new fsi::coupling::L2Projection(structure_->interfaceMesh(), ip->referenceMesh(), opt));
-      const auto& r = maps_.back()->report();
-      Info << "fsiCoupling: patch " << ip->name() << ": " << r.targetNodes << " fluid points <- "
-           << r.sourceNodes << " structure nodes, " << fsi::coupling::toString(opt.mass)
-           << " L2 projection, largest gap " << r.maxGap << " m, set up in " << r.setupSeconds << " s"
-           << endl;
-      if (!r.allMapped()) {
-        FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
-                                     << ip->name() << " are farther than mapTolerance " << opt.tolerance
-                                     << " m from the structure's interface (" << scene_ << ")";
-        for (const auto& u : r.firstUnmappedPoints)
-          FatalIOError << nl << "    (" << u.x[0] << ' ' << u.x[1] << ' ' << u.x[2] << ") at distance "
-                       << u.distance;
-        FatalIOError << nl << "Check that the patch and the structure's interface are the same surface, or "
-                     << "raise mapTolerance." << exit(FatalIOError);
-      }
-    }
-    // Restart: the structure continues from the state written with this time directory.
-    const fileName state = stateFile(time_.timePath());
-    if (isFile(state)) {
       try {
-        restartArrays = structure_->readState(std::string(state));
+        structure_ = std::make_unique<fsi::coupling::StructureParticipant>(std::string(scene_));
+      } catch (const Foam::error&) {
+        throw;
       } catch (const std::exception& e) {
-        FatalErrorInFunction << "fsiCoupling: " << e.what() << exit(FatalError);
+        FatalIOErrorInFunction(dict) << "fsiCoupling: structure scene " << scene_ << ": " << e.what()
+                                     << exit(FatalIOError);
       }
-      if (std::abs(structure_->time() - time_.value()) > 1e-9 * max(dt, 1.0))
-        FatalErrorInFunction << "fsiCoupling: structure state " << state
-                             << " is at t = " << structure_->time() << " s, the fluid at " << time_.value()
-                             << " s" << exit(FatalError);
-      Info << "fsiCoupling: structure restarted from " << state << endl;
-    } else if (time_.value() > 0.5 * dt) {
-      FatalErrorInFunction
-          << "fsiCoupling: the run starts at t = " << time_.value() << " s but there is no structure state "
-          << state << " (a restart needs the state written with that time directory; a new run starts "
-          << "at t = 0)" << exit(FatalError);
+      structure_->setMinSubcycles(int(o.integer("subcycles")));
+      // Projection structure -> each fluid patch, on the reference geometry.
+      fsi::coupling::ProjectionOptions opt;
+      opt.mass = projectionKind(o.text("projection"));
+      opt.tolerance = o.given("mapTolerance") ? o.real("mapTolerance")
+                                              : 0.25 * structure_->interfaceMesh().meanEdgeLength();
+      for (const auto& ip : interfaces_) {
+        maps_.emplace_back(
+            new fsi::coupling::L2Projection(structure_->interfaceMesh(), ip->referenceMesh(), opt));
+        const auto& r = maps_.back()->report();
+        Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
+             << " structure nodes, " << fsi::coupling::toString(opt.mass) << " L2 projection, largest gap "
+             << r.maxGap << " m, set up in " << r.setupSeconds << " s" << endl;
+        if (!r.allMapped()) {
+          FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
+                                       << ip->name() << " are farther than mapTolerance " << opt.tolerance
+                                       << " m from the structure's interface (" << scene_ << ")";
+          for (const auto& u : r.firstUnmappedPoints)
+            FatalIOError << nl << "    (" << u.x[0] << ' ' << u.x[1] << ' ' << u.x[2] << ") at distance "
+                         << u.distance;
+          FatalIOError << nl << "Check that the patch and the structure's interface are the same surface, or "
+                       << "raise mapTolerance." << exit(FatalIOError);
+        }
+      }
+      // Restart: the structure continues from the state written with this time directory.
+      const fileName state = stateFile(time_.timePath());
+      if (isFile(state)) {
+        restartArrays = structure_->readState(std::string(state));
+        if (std::abs(structure_->time() - time_.value()) > 1e-9 * max(dt, 1.0))
+          FatalErrorInFunction << "fsiCoupling: structure state " << state
+                               << " is at t = " << structure_->time() << " s, the fluid at " << time_.value()
+                               << " s" << exit(FatalError);
+        Info << "[fsi] structure restarted from " << time_.timeName() << "/uniform/" << state.name() << endl;
+      } else if (!fresh) {
+        FatalErrorInFunction
+            << "fsiCoupling: the run starts at t = " << time_.value() << " s but there is no structure state "
+            << state << " (a restart needs the state written with that time directory; a new run starts "
+            << "at t = 0)" << exit(FatalError);
+      }
+
+      scheme_ = std::make_unique<fsi::coupling::CouplingScheme>(
+          fsi::coupling::couplingConfig(o, dt, endTime_), *structure_,
+          implicit_ ? fsi::coupling::makeAcceleration(o) : nullptr);
+
+      // Output: one series per run. A restart continues results.h5, coupling.csv and timing.json after
+      // dropping what lies later than the restart time (a restart from an earlier time leaves no stale
+      // future); everything within half a window of t0 belongs to t0.
+      mkDir(outDir);
+      const std::optional<double> keepUntil = fresh ? std::nullopt : std::optional<double>(t0 + 0.5 * dt);
+      structure_->openResults(std::string(outDir / "results.h5"), keepUntil);
+      if (fresh) {
+        structure_->recordHistory(t0);  // the state at t = 0 opens the energy and probe tables
+      } else {
+        structure_->noteRestart(t0);
+      }
+      structure_->writeResults(t0);  // t = 0, or the restart time if the earlier run has no frame there
+      std::string header =
+          "time,iterations,converged,residual,Fx_fluid,Fy_fluid,Fz_fluid,Fx_structure,Fy_structure,Fz_"
+          "structure";
+      for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene()))
+        header += ',' + name;
+      csv_ = std::make_unique<fsi::coupling::CouplingCsv>(
+          std::string(outDir / "coupling.csv"), header,
+          fresh ? std::nullopt
+                : std::optional<fsi::coupling::CsvRestart>(
+                      fsi::coupling::CsvRestart{*keepUntil, time_.timeName()}));
+      timing_ = std::make_unique<fsi::coupling::CouplingTiming>(
+          std::string(outDir / "timing.json"), fresh ? std::nullopt : std::optional<double>(t0), 0.5 * dt);
+      stepsAtStart_ = structure_->structuralSteps();
+    } catch (const Foam::error&) {
+      throw;
+    } catch (const std::exception& e) {
+      FatalIOErrorInFunction(dict) << "fsiCoupling: " << e.what() << exit(FatalIOError);
     }
 
-    fsi::coupling::CouplingConfig cfg;
-    cfg.kind = implicit_ ? fsi::coupling::SchemeKind::Implicit : fsi::coupling::SchemeKind::Staggered;
-    cfg.timeWindowSize = dt;
-    cfg.endTime = endTime;
-    cfg.extrapolationOrder = dict.lookupOrDefault<label>("extrapolation", 1);
-    cfg.relativeTolerance = dict.lookupOrDefault<scalar>("tolerance", 1e-5);
-    cfg.maxIterations = dict.lookupOrDefault<label>("maxIterations", 30);
-    scheme_ = std::make_unique<fsi::coupling::CouplingScheme>(
-        cfg, *structure_, implicit_ ? fsi::coupling::makeAcceleration(accelerationConfig(dict)) : nullptr);
-    mkDir(outDir);
-    const bool fresh = time_.value() <= 0.5 * dt;
-    structure_->openResults(
-        std::string(outDir / (fresh ? word("results.h5") : "results_from_" + time_.timeName() + ".h5")));
-    log_.reset(
-        new OFstream(outDir / (fresh ? word("coupling.csv") : "coupling_from_" + time_.timeName() + ".csv")));
-    *log_ << "time,iterations,converged,residual,Fx_fluid,Fy_fluid,Fz_fluid,Fx_structure,Fy_structure,Fz_"
-             "structure";
-    for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene()))
-      *log_ << ',' << name.c_str();
-    *log_ << endl;
-    log_->precision(12);
-    Info << "fsiCoupling: structure " << scene_ << ", " << structure_->numInterfaceNodes()
-         << " interface nodes; " << scheme << " coupling, window " << dt << " s, "
-         << structure_->subcyclesFor(dt) << " structural steps per window" << endl;
+    Info << "[fsi] structure " << sceneGiven.c_str() << ": " << structure_->numInterfaceNodes()
+         << " interface nodes, " << structure_->subcyclesFor(dt) << " structural steps per window of " << dt
+         << " s" << endl;
+    if (implicit_) {
+      const std::string& acc = o.text("acceleration");
+      Info << "[fsi] implicit coupling, " << acc.c_str() << " (omega " << o.real("omega");
+      if (o.has("reuse")) Info << ", reuse " << o.integer("reuse");
+      Info << "), tolerance " << o.real("tolerance") << ", at most " << o.integer("maxIterations")
+           << " iterations, extrapolation " << o.integer("extrapolation") << endl;
+    } else {
+      Info << "[fsi] staggered coupling, extrapolation " << o.integer("extrapolation") << endl;
+    }
+    if (!fresh)
+      Info << "[fsi] restart at t = " << time_.timeName() << ": structure/results.h5 ("
+           << structure_->framesWritten() << " frames up to here), coupling.csv and timing.json continue"
+           << endl;
+    Info << "[fsi] t = " << time_.timeName() << " to " << endTime_ << " s, " << windowsTotal << " windows; ";
+    if (progressEvery_ > 0)
+      Info << "progress every " << progressEvery_ << " window(s)" << endl;
+    else
+      Info << "no progress lines" << endl;
   }
 
   // Loads at t0 and the first interface displacement (the first step has no execute() before it moves).
   vector fluidTotal;
   const std::vector<double> loads = structureLoads(fluidTotal);
   if (Pstream::master()) {
-    const std::vector<double> d0 = structure_->interfaceDisplacement();
-    scheme_->initialize(time_.value(), Eigen::Map<const Eigen::VectorXd>(d0.data(), Eigen::Index(d0.size())),
-                        Eigen::Map<const Eigen::VectorXd>(loads.data(), Eigen::Index(loads.size())));
-  }
-  if (Pstream::master()) {
-    std::vector<Eigen::VectorXd> history;
-    for (int k = 0; k < 3; ++k) {
-      const auto it = restartArrays.find("interface_history_" + std::to_string(k));
-      if (it != restartArrays.end())
-        history.emplace_back(
-            Eigen::Map<const Eigen::VectorXd>(it->second.data(), Eigen::Index(it->second.size())));
+    try {
+      const std::vector<double> d0 = structure_->interfaceDisplacement();
+      scheme_->initialize(time_.value(),
+                          Eigen::Map<const Eigen::VectorXd>(d0.data(), Eigen::Index(d0.size())),
+                          Eigen::Map<const Eigen::VectorXd>(loads.data(), Eigen::Index(loads.size())));
+      std::vector<Eigen::VectorXd> history;
+      for (int k = 0; k < 3; ++k) {
+        const auto it = restartArrays.find("interface_history_" + std::to_string(k));
+        if (it != restartArrays.end())
+          history.emplace_back(
+              Eigen::Map<const Eigen::VectorXd>(it->second.data(), Eigen::Index(it->second.size())));
+      }
+      scheme_->restoreHistory(history);
+    } catch (const std::exception& e) {
+      FatalIOErrorInFunction(dict) << "fsiCoupling: " << e.what() << exit(FatalIOError);
     }
-    scheme_->restoreHistory(history);
   }
   if (implicit_ || verifyCheckpoint_) checkpoint_->save();
   if (implicit_) {
@@ -276,9 +322,32 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     // The last window must be repeatable: Time::run() ends the loop at endTime before a restored step could
     // run again, so the solver gets one spare step and the object stops the run when the last window is
     // accepted.
-    const_cast<Time&>(time_).setEndTime(endTime + dt);
+    const_cast<Time&>(time_).setEndTime(endTime_ + dt);
   }
   sendDisplacement();
+}
+
+scalar fsiCoupling::namedTime(scalar t) const {
+  return std::stod(std::string(time_.timeName(t)));
+}
+
+fsi::coupling::TimingSegment fsiCoupling::timingSegment(double wall) const {
+  fsi::coupling::TimingSegment seg;
+  const auto& s = scheme_->statistics();
+  seg.startTime = namedTime(segmentStart_);
+  seg.endTime = namedTime(scheme_->time());
+  seg.wallSeconds = wall;
+  seg.transferSeconds = tTransfer_;
+  seg.structureSeconds = tStructure_;
+  seg.checkpointSeconds = tCheckpoint_;
+  seg.windows = s.windows;
+  seg.fluidSolves = fluidSolves_;
+  seg.iterations = s.iterations;
+  seg.maxIterations = s.maxIterations;
+  seg.notConverged = s.notConverged;
+  seg.structuralSteps = structure_->structuralSteps() - stepsAtStart_;
+  seg.ranks = Pstream::nProcs();
+  return seg;
 }
 
 std::vector<double> fsiCoupling::structureLoads(vector& fluidTotal) const {
@@ -321,7 +390,11 @@ fileName fsiCoupling::stateFile(const fileName& timePath) const {
 
 void fsiCoupling::writeStructure() {
   if (!Pstream::master()) return;
-  structure_->writeResults();
+  structure_->writeResults(namedTime(time_.value()));
+  timing_->write(timingSegment(seconds(wallStart_, Clock::now())));  // a killed run keeps its timing so far
+  // The restart state goes with the fluid's fields: a time directory holding only it (the end of a run
+  // that is not a write time) would be taken by `startFrom latestTime` and fail for want of fields.
+  if (!time_.writeTime()) return;
   const fileName dir = time_.timePath() / "uniform";
   mkDir(dir);
   std::map<std::string, std::vector<double>> arrays;
@@ -334,11 +407,11 @@ void fsiCoupling::writeStructure() {
 
 void fsiCoupling::keepLastStableState() {
   structure_->restoreCheckpoint();
-  structure_->writeResults();
+  structure_->writeResults(namedTime(scheme_->time()));
   structure_->writeState(std::string(time_.globalPath() / "structure" / "last_stable_state.h5"));
 }
 
-void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads) {
+void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads, bool finished) {
   if (!Pstream::master()) return;
   vector structureTotal = Zero;
   for (std::size_t k = 0; k < loads.size(); ++k) structureTotal[k % 3] += loads[k];
@@ -346,12 +419,45 @@ void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>&
   Info << "fsiCoupling: t = " << time_.value() << " s, window " << w.window << ": " << w.iterations
        << " iteration(s)" << (w.converged || !implicit_ ? "" : " NOT CONVERGED") << ", interface force fluid "
        << fluidTotal << " N, structure " << structureTotal << " N" << endl;
-  OFstream& os = *log_;
-  os << time_.value() << ',' << w.iterations << ',' << int(w.converged) << ',' << w.relativeResidual;
-  for (direction k = 0; k < 3; ++k) os << ',' << fluidTotal[k];
-  for (direction k = 0; k < 3; ++k) os << ',' << structureTotal[k];
-  for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene())) os << ',' << value;
-  os << endl;
+  // The row's time is the fluid's time name: the rows line up with the time directories exactly.
+  const std::map<std::string, double> probes = structure_->recordHistory(namedTime(time_.value()));
+  char buf[64];
+  std::string row = std::string(time_.timeName()) + ',' + std::to_string(w.iterations) + ',' +
+                    std::to_string(int(w.converged));
+  auto add = [&](double v) {
+    std::snprintf(buf, sizeof buf, ",%.12g", v);
+    row += buf;
+  };
+  add(w.relativeResidual);
+  for (direction k = 0; k < 3; ++k) add(fluidTotal[k]);
+  for (direction k = 0; k < 3; ++k) add(structureTotal[k]);
+  for (const auto& [name, value] : probes) add(value);
+  csv_->row(row);
+  printProgress(fluidTotal, finished);
+}
+
+void fsiCoupling::printProgress(const vector& fluidTotal, bool finished) const {
+  if (progressEvery_ <= 0) return;
+  const scalar dt = time_.deltaTValue();
+  const long n = std::lround(time_.value() / dt), total = std::lround(endTime_ / dt);
+  if (n % progressEvery_ != 0 && !finished) return;
+  const auto& w = scheme_->lastWindow();
+  const auto& s = scheme_->statistics();
+  const double wall = seconds(wallStart_, Clock::now());
+  const long done = std::lround((time_.value() - segmentStart_) / dt);
+  const double eta = done > 0 ? wall * double(total - n) / double(done) : 0.0;
+  char residual[32] = "-";
+  if (implicit_) std::snprintf(residual, sizeof residual, "%.2e", w.relativeResidual);
+  char line[256];
+  // Short enough for one terminal line (< 160 characters even at a million windows and 100 hours).
+  std::snprintf(
+      line, sizeof line,
+      "[fsi] t %s/%g s (%.1f%%)  window %ld/%ld  iter %d (mean %.1f)  res %s  F (%.3g %.3g %.3g) N  "
+      "wall %s  ETA %s",
+      time_.timeName().c_str(), endTime_, 100.0 * time_.value() / endTime_, n, total, w.iterations,
+      s.meanIterations(), residual, fluidTotal.x(), fluidTotal.y(), fluidTotal.z(), hms(wall).c_str(),
+      hms(eta).c_str());
+  Info << line << endl;
 }
 
 bool fsiCoupling::execute() {
@@ -422,8 +528,19 @@ bool fsiCoupling::execute() {
     checkpoint_->restore();
     if (!isDir(time_.timePath())) strayTimeDir_ = time_.timePath();
   } else {
-    logWindow(fluidTotal, loads);
-    if (time_.writeTime() || finished) writeStructure();
+    try {
+      logWindow(fluidTotal, loads, finished);
+      // OpenFOAM writes the fields at the end only when it is one of its write times (and the implicit
+      // scheme's spare step moved the end): write the last window now, fields and structure state together,
+      // so a continued run can start from it.
+      if (finished && !time_.writeTime()) const_cast<Time&>(time_).writeNow();
+      if (time_.writeTime() || finished) writeStructure();
+    } catch (const Foam::error&) {
+      throw;
+    } catch (const std::exception& e) {
+      FatalErrorInFunction << "fsiCoupling: t = " << time_.value()
+                           << " s: writing the structure's output: " << e.what() << exit(FatalError);
+    }
     if ((implicit_ || verifyCheckpoint_) && !finished) checkpoint_->save();
   }
   const auto t3 = Clock::now();
@@ -433,7 +550,7 @@ bool fsiCoupling::execute() {
   tStructure_ += seconds(t1, t2);
   tCheckpoint_ += seconds(t2, t3);
   if (finished && implicit_) {
-    // The spare step added at start-up is not run: stop here (fields of this time are already written).
+    // The spare step added at start-up is not run: stop here (this window is written above).
     const_cast<Time&>(time_).setEndTime(time_.value());
     end();
   }
@@ -451,20 +568,23 @@ bool fsiCoupling::end() {
   const double ours = tTransfer_ + tStructure_ + tCheckpoint_;
   if (Pstream::master()) {
     const auto& s = scheme_->statistics();
-    Info << "fsiCoupling: " << s.windows << " windows, " << fluidSolves_ << " fluid solves ("
-         << s.meanIterations() << " per window, at most " << s.maxIterations << ", " << s.notConverged
-         << " not converged); " << structure_->structuralSteps() << " structural steps" << nl
-         << "fsiCoupling: wall time " << wall << " s: transfer " << tTransfer_ << " s, structure "
-         << tStructure_ << " s, checkpoints " << tCheckpoint_ << " s = " << 100.0 * ours / max(wall, 1e-300)
-         << " % of the run" << endl;
-    OFstream js(time_.globalPath() / "structure" / "timing.json");
-    js << "{\"wall_seconds\": " << wall << ", \"transfer_seconds\": " << tTransfer_
-       << ", \"structure_seconds\": " << tStructure_ << ", \"checkpoint_seconds\": " << tCheckpoint_
-       << ", \"windows\": " << s.windows << ", \"fluid_solves\": " << fluidSolves_
-       << ", \"mean_iterations\": " << s.meanIterations() << ", \"max_iterations\": " << s.maxIterations
-       << ", \"not_converged\": " << s.notConverged
-       << ", \"structural_steps\": " << structure_->structuralSteps() << ", \"ranks\": " << Pstream::nProcs()
-       << "}" << endl;
+    Info << "[fsi] " << s.windows << " windows, " << fluidSolves_ << " fluid solves (" << s.meanIterations()
+         << " per window, at most " << s.maxIterations << ", " << s.notConverged << " not converged); "
+         << structure_->structuralSteps() - stepsAtStart_ << " structural steps" << nl << "[fsi] wall time "
+         << wall << " s: transfer " << tTransfer_ << " s, structure " << tStructure_ << " s, checkpoints "
+         << tCheckpoint_ << " s = " << 100.0 * ours / max(wall, 1e-300) << " % of the run" << endl;
+    const fsi::coupling::TimingSegment seg = timingSegment(wall);
+    if (!timing_->earlier().empty()) {
+      const fsi::coupling::TimingSegment all = timing_->total(seg);
+      Info << "[fsi] all " << timing_->earlier().size() + 1 << " run segments: " << all.windows
+           << " windows, " << all.fluidSolves << " fluid solves, wall time " << all.wallSeconds << " s"
+           << endl;
+    }
+    try {
+      timing_->write(seg);
+    } catch (const std::exception& e) {
+      WarningInFunction << "fsiCoupling: " << e.what() << endl;
+    }
   }
   return true;
 }

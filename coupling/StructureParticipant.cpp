@@ -1,11 +1,12 @@
 #include "coupling/StructureParticipant.hpp"
 
 #include <cmath>
-#include <unordered_map>
 
+#include "coupling/interface/SceneInterface.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
+#include "structure/run/Simulation.hpp"
 
 namespace fsi::coupling {
 
@@ -24,18 +25,9 @@ StructureParticipant::StructureParticipant(Scene scene) : scene_(std::move(scene
                      ": a coupled structure runs explicit dynamics (no `solver` section)");
   cd_ = std::make_unique<structure::CentralDifference>(*scene_.model, scene_.effectList(), scene_.constraints,
                                                        scene_.time.integrator);
-  // Interface mesh: the pressure effect's nodes and triangles, in reference coordinates.
-  const structure::Nodes& N = scene_.model->nodes;
+  mesh_ =
+      sceneInterface(scene_);  // reference coordinates, points in the order of the pressure effect's nodes
   const auto& nodes = scene_.interfacePressure->nodes();
-  std::unordered_map<int, int> local;
-  mesh_.name = "structure";
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    local[nodes[i]] = int(i);
-    mesh_.points.push_back({N.X[3 * nodes[i]], N.X[3 * nodes[i] + 1], N.X[3 * nodes[i] + 2]});
-  }
-  const auto& tris = scene_.interfacePressure->triangles();
-  for (std::size_t e = 0; e + 2 < tris.size(); e += 3)
-    mesh_.addFace({local.at(tris[e]), local.at(tris[e + 1]), local.at(tris[e + 2])});
   loadStart_.assign(nodes.size(), 0.0);
   loadEnd_.assign(nodes.size(), 0.0);
   cd_->evaluateForces(false);
@@ -63,8 +55,18 @@ void StructureParticipant::setForces(const std::vector<double>& fStart, const st
   forces_ = true;
 }
 
+void StructureParticipant::setMinSubcycles(int n) {
+  if (n < 1)
+    throw std::invalid_argument("StructureParticipant: subcycles = " + std::to_string(n) + ", valid: >= 1");
+  minSubcycles_ = n;
+}
+
 void StructureParticipant::advance(double dt) {
-  const double t0 = cd_->time(), t1 = t0 + dt;
+  advanceTo(cd_->time() + dt);
+}
+
+void StructureParticipant::advanceTo(double t1) {
+  const double t0 = cd_->time(), dt = t1 - t0;
   if (forces_)
     scene_.interfacePressure->setForceWindow(t0, t1, loadStart_, loadEnd_, scene_.interfaceLoadRule);
   else
@@ -73,7 +75,11 @@ void StructureParticipant::advance(double dt) {
   cd_->setMaxDt(minSubcycles_ > 1 ? std::min(scenarioMaxDt, dt / minSubcycles_ * (1 + 1e-12))
                                   : scenarioMaxDt);
   while (cd_->time() < t1 * (1 - 1e-14) - 1e-300) {
-    if (!cd_->step(t1, false))
+    // The strain energy (for the energy table, one row per window) is evaluated on the window's last step
+    // only: the integrator lands on t1 in equal steps, so the last one is within 1.5 steps of the end.
+    const bool monitor = cd_->lastDt() == 0 || t1 - cd_->time() <= 1.5 * cd_->lastDt();
+    lastStepMonitored_ = monitor;
+    if (!cd_->step(t1, monitor))
       throw StructureUnstable(structure::diagnoseInstability(scene_, *cd_, checkpoint_.steps,
                                                              checkpoint_.time,
                                                              /*nonFinite=*/true));
@@ -123,7 +129,7 @@ Eigen::VectorXd StructureParticipant::solve(double t, double dt, const Eigen::Ve
     setForces(a, b);
   else
     setPressure(a, b);
-  advance(dt);
+  advanceTo(t + dt);  // the window's end from the scheme's clock, not the structure's running sum
   const std::vector<double> u = interfaceDisplacement();
   return Eigen::Map<const Eigen::VectorXd>(u.data(), Eigen::Index(u.size()));
 }
@@ -135,10 +141,20 @@ void StructureParticipant::restoreCheckpoint() {
   cd_->restore(checkpoint_);
 }
 
+namespace {
+const char* const kLedgerKey = "energy_ledger";
+const std::vector<std::string> kEnergyColumns{
+    "time", "kinetic", "strain", "external_work", "internal_work", "mass_damping", "balance_error", "dt"};
+}  // namespace
+
 void StructureParticipant::writeState(const std::filesystem::path& file,
                                       const std::map<std::string, std::vector<double>>& arrays) const {
   structure::StateSnapshot s;
   s.arrays = arrays;
+  const structure::CentralDifference::Checkpoint c = cd_->checkpoint();
+  const structure::EnergyLedger& E = c.ledger;
+  s.arrays[kLedgerKey] = {E.kinetic,      E.initialKinetic, E.strain,     E.externalWork,
+                          E.internalWork, E.massDamping,    c.pendingExt, c.pendingInt};
   s.time = cd_->time();
   s.step = cd_->steps();
   s.dt = cd_->lastDt();
@@ -155,18 +171,93 @@ std::map<std::string, std::vector<double>> StructureParticipant::readState(
     throw InputError(file.string() + ": restart state has " + std::to_string(s.x.size() / 3) +
                      " nodes but the scene " + scene_.file.string() + " has " + std::to_string(n / 3));
   cd_->restore(s.x, s.v, s.time, s.dt, s.step);
+  std::map<std::string, std::vector<double>> arrays = s.arrays;
+  const auto ledger = arrays.find(kLedgerKey);
+  if (ledger != arrays.end()) {
+    // Energies continue from the state's (a state file without them restarts the ledger at zero).
+    const std::vector<double>& L = ledger->second;
+    if (L.size() != 8)
+      throw InputError(file.string() + ": " + kLedgerKey + " has " + std::to_string(L.size()) +
+                       " values, expected 8");
+    structure::CentralDifference::Checkpoint c = cd_->checkpoint();
+    c.ledger.kinetic = L[0];
+    c.ledger.initialKinetic = L[1];
+    c.ledger.strain = L[2];
+    c.ledger.externalWork = L[3];
+    c.ledger.internalWork = L[4];
+    c.ledger.massDamping = L[5];
+    c.pendingExt = L[6];
+    c.pendingInt = L[7];
+    cd_->restore(c);
+    arrays.erase(ledger);
+  }
   cd_->evaluateForces(false);
   saveCheckpoint();
-  return s.arrays;
+  return arrays;
 }
 
-void StructureParticipant::openResults(const std::filesystem::path& h5File) {
-  frames_ = std::make_unique<structure::SceneFrames>(scene_, h5File);
+void StructureParticipant::openResults(const std::filesystem::path& h5File, std::optional<double> keepUntil) {
+  frames_ = std::make_unique<structure::SceneFrames>(scene_, h5File, keepUntil);
+  probeNames_.assign(1, "time");
+  for (const auto& p : scene_.probes) probeNames_.push_back(p.name);
+  energyRows_.assign(kEnergyColumns.size(), {});
+  probeRows_.assign(probeNames_.size(), {});
+  if (!keepUntil) return;
+  // A restart continues the tables, without the rows later than the restart.
+  auto restore = [&](const char* table, const std::vector<std::string>& columns,
+                     std::vector<std::vector<double>>& rows) {
+    auto [names, data] = frames_->writer().readTable(table);
+    if (names.empty()) return;
+    if (names != columns) {
+      std::string had, has;
+      for (const auto& n : names) had += " " + n;
+      for (const auto& n : columns) has += " " + n;
+      throw InputError(h5File.string() + ": table " + table + " has the columns" + had +
+                       " but this run's are" + has +
+                       " (the scene changed); move the file away to start a new series");
+    }
+    for (std::size_t k = 0; k < data.front().size(); ++k)
+      if (data.front()[k] <= *keepUntil)
+        for (std::size_t i = 0; i < rows.size(); ++i) rows[i].push_back(data[i][k]);
+  };
+  restore("energy", kEnergyColumns, energyRows_);
+  restore("probes", probeNames_, probeRows_);
 }
 
-void StructureParticipant::writeResults() {
+bool StructureParticipant::writeResults(double time) {
   if (!frames_) throw std::logic_error("StructureParticipant::writeResults before openResults");
-  frames_->write(cd_->time(), cd_->steps());
+  // One frame per time: e.g. the last stable state of a blow-up may be the frame written at that time.
+  if (frames_->lastTime() >= time - 1e-12 * std::max(1.0, std::abs(time))) return false;
+  frames_->write(time, cd_->steps());
+  frames_->writer().writeTable("energy", kEnergyColumns, energyRows_);
+  frames_->writer().writeTable("probes", probeNames_, probeRows_);
+  return true;
+}
+
+void StructureParticipant::noteRestart(double time) {
+  if (!frames_) throw std::logic_error("StructureParticipant::noteRestart before openResults");
+  std::vector<double> times;
+  for (const double t : frames_->writer().rootAttribute("restart_times"))
+    if (t < time) times.push_back(t);
+  times.push_back(time);
+  frames_->writer().writeRootAttribute("restart_times", times);
+}
+
+std::map<std::string, double> StructureParticipant::recordHistory(double time) {
+  if (!frames_) throw std::logic_error("StructureParticipant::recordHistory before openResults");
+  if (!lastStepMonitored_) cd_->evaluateForces(true);  // rare: the window's last step had no strain energy
+  const structure::EnergyLedger& E = cd_->energy();
+  const double row[] = {time,           E.kinetic,     E.strain,         E.externalWork,
+                        E.internalWork, E.massDamping, E.balanceError(), cd_->lastDt()};
+  for (std::size_t i = 0; i < energyRows_.size(); ++i) energyRows_[i].push_back(row[i]);
+  std::map<std::string, double> probes = structure::evaluateProbes(scene_);
+  probeRows_[0].push_back(time);
+  for (std::size_t i = 1; i < probeNames_.size(); ++i) probeRows_[i].push_back(probes.at(probeNames_[i]));
+  return probes;
+}
+
+int StructureParticipant::framesWritten() const {
+  return frames_ ? frames_->writer().stepsWritten() : 0;
 }
 
 }  // namespace fsi::coupling

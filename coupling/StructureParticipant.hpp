@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -53,12 +54,16 @@ class StructureParticipant final : public StructureSolver {
   void setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd);
   /// Nodal forces (3 per interface node, xyz) at the start and the end of the next fluid step [N].
   void setForces(const std::vector<double>& fStart, const std::vector<double>& fEnd);
-  /// At least this many structural steps per fluid step (1 = as the stability limit allows). Used to show
-  /// that subcycling does not change a coupled answer beyond the time-discretisation error.
-  void setMinSubcycles(int n) { minSubcycles_ = std::max(1, n); }
+  /// At least this many structural steps per fluid step (1 = as the stability limit allows); n < 1 throws
+  /// std::invalid_argument. Used to show that subcycling does not change a coupled answer beyond the
+  /// time-discretisation error.
+  void setMinSubcycles(int n);
   /// Integrates [t, t + dt] with the explicit solver (subcycling) under the interpolated pressure; throws
   /// StructureUnstable (with a diagnosis) if the state becomes non-finite.
   void advance(double dt);
+  /// The same up to exactly tEnd: solve() ends each window on the scheme's window end, so the structure's
+  /// clock does not drift from the fluid's by summing window sizes.
+  void advanceTo(double tEnd);
 
   std::vector<double> interfaceDisplacement() const;  ///< 3 per interface node [m]
   std::vector<double> interfaceVelocity() const;      ///< 3 per interface node [m/s], at the last half step
@@ -72,17 +77,31 @@ class StructureParticipant final : public StructureSolver {
   void saveCheckpoint() override;
   void restoreCheckpoint() override;
 
-  /// Restart file (HDF5, structure/io/StateFile): positions, velocities, time, step size and step count,
-  /// plus any `arrays` of the caller (e.g. the coupling scheme's displacement history).
+  /// Restart file (HDF5, structure/io/StateFile): positions, velocities, time, step size and step count, the
+  /// energy ledger (so energies continue across a restart), plus any `arrays` of the caller (e.g. the
+  /// coupling scheme's displacement history; the key "energy_ledger" is the participant's).
   void writeState(const std::filesystem::path& file,
                   const std::map<std::string, std::vector<double>>& arrays = {}) const;
   /// Continues from a restart file and returns its arrays; throws fsi::InputError naming the file when it
   /// does not fit the scene.
   std::map<std::string, std::vector<double>> readState(const std::filesystem::path& file);
 
-  /// Results series (HDF5 + XDMF) of the whole structure: open once, then one frame per call.
-  void openResults(const std::filesystem::path& h5File);
-  void writeResults();
+  /// Results series (HDF5 + XDMF) of the whole structure: open once, then one frame per call. With
+  /// `keepUntil` (a restart) the series in h5File continues: its frames and table rows later than keepUntil
+  /// are dropped first, and its energy and probe tables go on.
+  void openResults(const std::filesystem::path& h5File, std::optional<double> keepUntil = std::nullopt);
+  /// One frame labelled `time` (the fluid's time of this state), and the tables as recorded so far.
+  /// Returns false (and writes nothing) if the series already ends at or after `time`.
+  bool writeResults(double time);
+  bool writeResults() { return writeResults(time()); }
+  /// Adds the "restart_times" entry `time` to the results file, dropping later (stale) entries.
+  void noteRestart(double time);
+  /// One row of the energy table (time, kinetic, strain, external_work, internal_work, mass_damping,
+  /// balance_error, dt) and of the probe table (time, each probe) at the current state, labelled `time`;
+  /// returns the probe values. Energies are those of the window's last structural step.
+  std::map<std::string, double> recordHistory(double time);
+  /// Frames in the results series (including those kept from an earlier run).
+  int framesWritten() const;
 
   structure::Scene& scene() { return scene_; }
   const structure::CentralDifference& integrator() const { return *cd_; }
@@ -94,8 +113,12 @@ class StructureParticipant final : public StructureSolver {
   std::vector<double> loadStart_, loadEnd_;
   bool forces_ = false;  ///< the loads are nodal forces, not pressures
   int minSubcycles_ = 1;
+  bool lastStepMonitored_ = false;  ///< the last structural step evaluated the strain energy
   structure::CentralDifference::Checkpoint checkpoint_;
   std::unique_ptr<structure::SceneFrames> frames_;
+  // Histories for /tables/energy and /tables/probes of the results file, column by column.
+  std::vector<std::string> probeNames_;
+  std::vector<std::vector<double>> energyRows_, probeRows_;
 };
 
 }  // namespace fsi::coupling

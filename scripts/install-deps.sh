@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Installs every build/run/test dependency from Debian 12 packages.
 # Idempotent: when every package is already present it only runs dpkg-query (< 1 s).
+# gmsh: the command that meshes .geo scripts into the .msh files fsi reads (fsi itself does not link the Gmsh
+# library; tests/data/gmsh/generate.sh uses the command to regenerate test meshes).
 set -euo pipefail
 
 packages=(
   cmake g++ ninja-build pkg-config
   libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
-  libhdf5-dev hdf5-tools libgmsh-dev gmsh libnanoflann-dev
+  libhdf5-dev hdf5-tools gmsh libnanoflann-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib python3-h5py python3-yaml
 )

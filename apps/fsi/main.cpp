@@ -1,19 +1,27 @@
 // fsi: the command-line front end.
 //   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet]
 //   fsi validate CASE_DIR [--out DIR]   runs the checks in CASE_DIR/reference.yaml against their references
-//   fsi map-check SRC DST [--tolerance T] [--json FILE]   checks the projections between two interface meshes
+//   fsi map-check SRC DST [--tolerance T] [--json FILE] [--set key=value]
+//                          checks the projections between two interface meshes (Gmsh file, OpenFOAM patch
+//                          or a structure scene's coupling interface)
+//   fsi plot RUN_DIR [--out DIR] [--color auto|stress|displacement]
+//                          PNG plots of a run (share/fsi/fsi_plot.py)
 
 #include <fmt/format.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
-#include "coupling/interface/InterfaceIO.hpp"
+#include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/Simulation.hpp"
@@ -25,9 +33,26 @@ using namespace fsi::structure;
 
 namespace {
 
+// The structural side of a coupled scene has no end time of its own (the flow solver sets it); run alone it
+// would start with an infinite time to go, so it needs one given.
+void requireEndTime(const Scene& scene) {
+  if (scene.solver.type == SolverControl::Type::ExplicitDynamics && !std::isfinite(scene.time.endTime))
+    throw fsi::InputError(
+        fmt::format("{}: time.end: this coupled scene takes its end time from the flow "
+                    "solver; to run the structure alone, give one (e.g. --set time.end=1.0)",
+                    scene.file.string()));
+}
+
 int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets,
                bool quiet) {
   Scene scene = loadScene(scenePath, sets);
+  requireEndTime(scene);
+  // An output directory that cannot be made is bad input too: say so before the run, not as a crash in it.
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out))
+    throw fsi::InputError(fmt::format("--out {}: cannot create the output directory{}", out.string(),
+                                      ec ? ": " + ec.message() : ""));
   RunOptions opt;
   opt.outDir = out;
   opt.quiet = quiet;
@@ -42,12 +67,12 @@ int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector
 int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   const fs::path refFile = caseDir / "reference.yaml";
   if (!fs::exists(refFile)) throw fsi::InputError(fmt::format("{}: no such file", refFile.string()));
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(refFile.string());
-  } catch (const YAML::Exception& e) {
-    throw fsi::InputError(fmt::format("{}: {}", refFile.string(), e.what()));
-  }
+  std::ifstream in(refFile);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw fsi::InputError(fmt::format("{}: cannot read", refFile.string()));
+  const YAML::Node root = parseDocument(text.str(), refFile.string());
+  checkDocument(root, refFile.string());
   YamlMap top(root, refFile.string(), "");
   const std::string source = top.string("reference");
   const YAML::Node checks = top.raw("checks");
@@ -67,6 +92,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
     YamlMap expects = c.map("expect");
     c.finish({"label", "scene", "set", "expect"});
     Scene scene = loadScene(caseDir / sceneName, sets);
+    requireEndTime(scene);
     RunOptions opt;
     opt.outDir = out / fmt::format("check{}", i);
     opt.quiet = quiet;
@@ -76,6 +102,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
       const double value = e.number("value");
       const double relTol = e.number("rel_tol");
       e.finish({"value", "rel_tol"});
+      if (!(relTol >= 0)) e.failAt("rel_tol", "must be >= 0");
       const auto it = r.probes.find(probe);
       if (it == r.probes.end()) expects.failAt(probe, fmt::format("the scene defines no probe '{}'", probe));
       // Relative error; for an expected 0 the tolerance is absolute.
@@ -95,7 +122,9 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // Exit code 0 when every point mapped, 1 when some did not (the summary says which); bad input throws.
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
-                    const std::string& variant, int quadratureLevel) {
+                    const std::string& variant, int quadratureLevel, const std::vector<std::string>& sets) {
+  if (!sets.empty() && !fsi::coupling::isSceneFile(src) && !fsi::coupling::isSceneFile(dst))
+    throw fsi::InputError("--set applies to a structure scene (SCENE.yaml), but neither side is one");
   if (quadratureLevel < 1)
     throw fsi::InputError(fmt::format("--quadrature-level {}: must be >= 1", quadratureLevel));
   fsi::coupling::MapCheckOptions opt;
@@ -112,8 +141,8 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
     out.open(jsonOut);
     if (!out) throw fsi::InputError(fmt::format("{}: cannot write", jsonOut.string()));
   }
-  const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterface(src);
-  const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterface(dst);
+  const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterfaceOrScene(src, sets);
+  const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterfaceOrScene(dst, sets);
   opt.tolerance = tolerance;
   opt.quadratureLevel = quadratureLevel;
   const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
@@ -123,6 +152,36 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
     if (!out) throw fsi::InputError(fmt::format("{}: write failed", jsonOut.string()));
   }
   return r.allMapped() ? 0 : 1;
+}
+
+// The plots are drawn by a Python script (matplotlib) installed next to the program: <exe dir>/../share/fsi
+// (build/share/fsi in the build tree, PREFIX/share/fsi when installed). It replaces this process (execv, the
+// arguments as a vector, no shell), so its exit code is ours: 0 written, 2 bad input, 1 modules missing.
+int plotCommand(const fs::path& runDir, const fs::path& out, const std::string& color) {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot locate the fsi executable (/proc/self/exe): " + ec.message());
+  const fs::path script = exe.parent_path().parent_path() / "share" / "fsi" / "fsi_plot.py";
+  if (!fs::is_regular_file(script))
+    throw std::runtime_error(
+        fmt::format("{} not found: the fsi installation is incomplete (the build copies "
+                    "apps/fsi/fsi_plot.py there)",
+                    script.string()));
+  const std::string python = "/usr/bin/python3";  // Debian's, with numpy, matplotlib and h5py
+  if (::access(python.c_str(), X_OK) != 0)
+    throw std::runtime_error(python + " not found: install python3-matplotlib python3-h5py");
+  std::vector<std::string> args{python, script.string(), runDir.string(), "--color", color};
+  if (!out.empty()) {
+    args.emplace_back("--out");
+    args.push_back(out.string());
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  ::execv(python.c_str(), argv.data());
+  throw std::runtime_error(fmt::format("cannot run {}: {}", python, std::strerror(errno)));
 }
 
 }  // namespace
@@ -153,7 +212,11 @@ int main(int argc, char** argv) {
   fs::path mapJson;
   std::string mapVariant = "consistent";
   int mapLevel = 1;
-  mapCheck->add_option("source", mapSrc, "first mesh: FILE.msh, FILE.msh:GROUP or CASE_DIR:PATCH")
+  std::vector<std::string> mapSets;
+  mapCheck
+      ->add_option(
+          "source", mapSrc,
+          "first mesh: FILE.msh, FILE.msh:GROUP, CASE_DIR:PATCH or SCENE.yaml (its coupling interface)")
       ->required();
   mapCheck->add_option("target", mapDst, "second mesh, same forms")->required();
   auto* mapTolOpt = mapCheck->add_option(
@@ -163,22 +226,58 @@ int main(int argc, char** argv) {
   mapCheck->add_option("--variant", mapVariant, "projection: consistent (default), lumped or dual");
   mapCheck->add_option("--quadrature-level", mapLevel,
                        "split each target triangle into level^2 for quadrature");
+  mapCheck->add_option("--set", mapSets,
+                       "override a value of the scene side(s): key.path=value (repeatable)");
 
-  CLI11_PARSE(app, argc, argv);
+  auto* plot =
+      app.add_subcommand("plot", "PNG plots of a structure run (fsi run --out DIR) or a coupled case");
+  fs::path plotDir, plotOut;
+  std::string plotColor = "auto";
+  plot->add_option("run", plotDir, "output folder of `fsi run`, or a coupled OpenFOAM case folder")
+      ->required();
+  plot->add_option("--out,-o", plotOut, "folder for the PNGs and index.json (default RUN/plots)");
+  plot->add_option("--color", plotColor,
+                   "structure picture coloured by: auto (major principal stress if written), stress or "
+                   "displacement")
+      ->check(CLI::IsMember({"auto", "stress", "displacement"}));
+
+  // Exit codes (README): 0 done, 1 any other failure, 2 bad input (arguments included), 3 unstable, 4 not
+  // converged, 130 interrupted. CLI11's own codes (104-114) would be mistaken for run results.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help prints the usage and succeeds
+    if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+      // CLI11 would only say "A subcommand is required"; name the word it did not know instead.
+      std::string names;
+      for (const CLI::App* c : app.get_subcommands([](CLI::App*) { return true; }))
+        names += (names.empty() ? "" : ", ") + c->get_name();
+      fmt::print(stderr, "error: unknown command '{}'; commands: {}\nrun 'fsi --help' for the usage\n",
+                 argv[1], names);
+      return 2;
+    }
+    fmt::print(stderr, "error: {}\nrun '{} --help' for the usage\n", e.what(),
+               app.get_subcommands().empty() ? "fsi" : "fsi " + app.get_subcommands().front()->get_name());
+    return 2;
+  }
   try {
     if (*run) return runCommand(scenePath, outDir, sets, quiet);
     if (*validate) return validateCommand(caseDir, valOut, quiet);
     if (*mapCheck) {
-      if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0))
-        throw fsi::InputError(fmt::format("--tolerance {}: must be a distance >= 0", mapTolerance));
+      if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))
+        throw fsi::InputError(fmt::format("--tolerance {}: must be a finite distance >= 0", mapTolerance));
       return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
-                             mapVariant, mapLevel);
+                             mapVariant, mapLevel, mapSets);
     }
+    if (*plot) return plotCommand(plotDir, plotOut, plotColor);
   } catch (const fsi::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  } catch (...) {
+    fmt::print(stderr, "error: unknown failure\n");
     return 1;
   }
   return 0;

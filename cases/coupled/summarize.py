@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Writes summary.json of a coupled case from its structure/coupling*.csv, structure/timing.json and
 reference.yaml: probe histories reduced to the quantities the reference names, compared with the published
-values, plus the coupling statistics and the wall time.
+values, plus the coupling statistics and the wall time; prints the same in a few lines for people.
 
-Usage: summarize.py CASE_DIR WALL_SECONDS
+Usage: summarize.py CASE_DIR WALL_SECONDS [--continued]
+         --continued: this run continued an earlier one; its wall time adds to the one in summary.json
        summarize.py --force-check CASE_DIR   (exit 1 unless fluid and structure interface forces agree < 1e-6)
 """
 import csv
@@ -14,10 +15,35 @@ import sys
 
 
 
-def history(case, probe):
+FORCE_TOLERANCE = 1e-6  # relative: the transfer is conservative, fluid and structure totals agree to round-off
+
+
+def read_csv(path):
+    """Rows of one coupling.csv. Lines starting with '#' are comments (a continued run appends
+    `# restart at t = ...` and its rows to the same file); a repeated header line is skipped."""
+    lines = [l for l in open(path) if l.strip() and not l.startswith("#")]
+    if not lines:
+        return []
+    header = lines[0]
+    return list(csv.DictReader([header] + [l for l in lines[1:] if l != header]))
+
+
+def coupling_rows(case):
+    """Windows of all run parts in time order: coupling.csv (continued runs appended to it, or written to
+    coupling_from_<time>.csv by older adapters). A run continued from a time before its last logged window
+    (the last write time of an interrupted run) logs those windows again: the later rows replace them."""
     rows = []
     for f in sorted(glob.glob(os.path.join(case, "structure", "coupling*.csv")), key=os.path.getmtime):
-        rows += list(csv.DictReader(open(f)))
+        for r in read_csv(f):
+            t = float(r["time"])
+            while rows and float(rows[-1]["time"]) >= t - 1e-12 * max(1.0, abs(t)):
+                rows.pop()
+            rows.append(r)
+    return rows
+
+
+def history(case, probe):
+    rows = coupling_rows(case)
     t = [float(r["time"]) for r in rows]
     v = [float(r[probe]) for r in rows]
     return rows, t, v
@@ -39,7 +65,7 @@ def force_check(case):
     rows, _, _ = history(case, "time")
     worst = force_difference(rows)
     print(f"{len(rows)} windows, largest relative difference of the interface force fluid/structure {worst:.2e}")
-    return 0 if rows and worst < 1e-6 else 1
+    return 0 if rows and worst < FORCE_TOLERANCE else 1
 
 
 def local_maxima(t, v):
@@ -77,6 +103,16 @@ def last_rows(path):
     return rows
 
 
+def all_parts(folder, name):
+    """Rows of a function object's .dat file over all run parts: OpenFOAM writes FOLDER/<start time>/NAME
+    for each run (0 and, after a continued run, its start time); later parts win."""
+    rows = {}
+    parts = [d for d in glob.glob(os.path.join(folder, "*")) if os.path.isfile(os.path.join(d, name))]
+    for d in sorted(parts, key=lambda d: float(os.path.basename(d))):
+        rows.update(last_rows(os.path.join(d, name)))
+    return rows
+
+
 def momentum_balance(case, rows, spec):
     """The membrane's load from the channel's momentum balance, against the load the structure received.
 
@@ -86,8 +122,8 @@ def momentum_balance(case, rows, spec):
     membrane's own motion is left out. Compared at the last time both files hold, component `component`."""
     pp = os.path.join(case, "postProcessing")
     k = "xyz".index(spec.get("component", "z"))
-    force = last_rows(os.path.join(pp, spec["force"], "0", "force.dat"))
-    flux = [last_rows(os.path.join(pp, name, "0", "surfaceFieldValue.dat")) for name in spec["flux"]]
+    force = all_parts(os.path.join(pp, spec["force"]), "force.dat")
+    flux = [all_parts(os.path.join(pp, name), "surfaceFieldValue.dat") for name in spec["flux"]]
     times = sorted(set(force).intersection(*flux))
     structure = {float(r["time"]): float(r["F" + "xyz"[k] + "_structure"]) for r in rows}
     times = [t for t in times if t in structure]
@@ -112,18 +148,73 @@ def mesh_quality(case, spec):
     return out
 
 
+def iteration_statistics(rows):
+    """Coupling iterations per window over all windows of all run parts (timing.json has the last part)."""
+    it = [int(r["iterations"]) for r in rows]
+    return {"windows": len(it), "mean_iterations": sum(it) / len(it) if it else None,
+            "max_iterations": max(it, default=None),
+            "not_converged": sum(1 for r in rows if r["converged"].strip() == "0")}
+
+
+def number(x):
+    return "-" if x is None else f"{x:.4g}"
+
+
+def report(out):
+    """The summary in a few lines: what was measured against what was published, coupling, wall time."""
+    it = out["iterations"]
+    lines = [f"{out['case']}: {it['windows']} windows to t = {number(out['end_time'])} s, "
+             f"{number(it['mean_iterations'])} coupling iterations per window (at most "
+             f"{it['max_iterations']}, {it['not_converged']} not converged)"]
+    for name, e in out["results"].items():
+        if e["value"] is None:
+            lines.append(f"  {name:<14} not reached (the run ends at t = {number(out['end_time'])} s)")
+            continue
+        lo, hi = e["accepted_range"]
+        pub = [p["value"] for p in e["published"]]
+        verdict = "PASS" if e["within"] else "outside" + ("" if e["check"] else " (reported, not a check)")
+        if not e["complete"]:
+            verdict += f" (its window ends at t = {number(e['window_end'])} s, the run at {number(out['end_time'])} s)"
+        published = number(pub[0]) if min(pub) == max(pub) else f"{number(min(pub))} .. {number(max(pub))}"
+        lines.append(f"  {name:<14} {number(e['value'])} at t = {number(e['time'])} s; published {published}, "
+                     f"accepted {number(lo)} .. {number(hi)}: {verdict}")
+    if "momentum_balance" in out:
+        m = out["momentum_balance"]
+        lines.append(f"  momentum balance at t = {number(m['time'])} s: structure load {number(m['structure'])}, "
+                     f"channel {number(m['channel'])}, relative difference {number(m['relative_difference'])} "
+                     f"(limit {m['tolerance']}): {'PASS' if m['within'] else 'outside'}")
+    if "mesh_quality" in out:
+        q = out["mesh_quality"]
+        lines.append(f"  mesh at the end: {'Mesh OK' if q['mesh_ok'] else 'checkMesh FAILED'}, non-orthogonality "
+                     f"{number(q['max_non_orthogonality'])} (limit {q['limits']['max_non_orthogonality']}), "
+                     f"skewness {number(q['max_skewness'])} (limit {q['limits']['max_skewness']}): "
+                     f"{'PASS' if q['within'] else 'outside'}")
+    d = out["interface_force_relative_difference"]
+    lines.append(f"  interface force, fluid vs structure side: largest relative difference {d:.1e} over all "
+                 f"windows: {'PASS' if d < FORCE_TOLERANCE else 'outside'} (conservative transfer: < {FORCE_TOLERANCE:g})")
+    part = f" ({out['wall_seconds_last_part']:.1f} s in this part)" if "wall_seconds_last_part" in out else ""
+    lines.append(f"  wall time {out['wall_seconds']:.1f} s{part}")
+    return "\n".join(lines)
+
+
 def main():
     if sys.argv[1] == "--force-check":
         return force_check(sys.argv[2])
     case, wall = sys.argv[1], float(sys.argv[2])
+    continued = "--continued" in sys.argv[3:]
     import yaml  # only the full summary needs it
 
     ref = yaml.safe_load(open(os.path.join(case, "reference.yaml")))
     timing = json.load(open(os.path.join(case, "structure", "timing.json")))
+    path = os.path.join(case, "summary.json")
     out = {"case": os.path.basename(os.path.abspath(case)), "wall_seconds": wall, "coupling": timing,
            "results": {}, "all_within_tolerance": True, "all_checks_within_tolerance": True}
+    if continued and os.path.exists(path):
+        out["wall_seconds"] = json.load(open(path))["wall_seconds"] + wall
+        out["wall_seconds_last_part"] = wall
     rows, t, v = history(case, ref["probe"])
     out["interface_force_relative_difference"] = force_difference(rows)
+    out["iterations"] = iteration_statistics(rows)
     out["end_time"] = t[-1] if t else None
     for name, spec in ref.get("quantities", {}).items():
         when, value = measure(t, v, spec)
@@ -134,6 +225,10 @@ def main():
         entry["accepted_range"] = [lo - tol * abs(lo), hi + tol * abs(hi)]
         entry["within"] = value is not None and entry["accepted_range"][0] <= value <= entry["accepted_range"][1]
         entry["check"] = bool(spec.get("check", False))
+        # a run that ends inside the measuring window (a short test run) measured only part of it
+        entry["complete"] = bool(t) and t[-1] >= spec.get("to", -1e300)
+        if not entry["complete"]:
+            entry["window_end"] = spec.get("to")
         out["all_within_tolerance"] &= entry["within"]
         if entry["check"]:
             out["all_checks_within_tolerance"] &= entry["within"]
@@ -150,8 +245,8 @@ def main():
     if "mesh_quality" in checks:
         out["mesh_quality"] = mesh_quality(case, checks["mesh_quality"])
         out["all_checks_within_tolerance"] &= out["mesh_quality"]["within"]
-    json.dump(out, open(os.path.join(case, "summary.json"), "w"), indent=2)
-    print(json.dumps({k: (v["value"], v["time"], v["within"]) for k, v in out["results"].items()}))
+    json.dump(out, open(path, "w"), indent=2)
+    print(report(out))
     return 0
 
 

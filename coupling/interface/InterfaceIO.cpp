@@ -4,14 +4,17 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
+#include <climits>
+#include <cstdint>
 #include <fstream>
 #include <map>
-#include <sstream>
+#include <new>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 #include "structure/io/GmshReader.hpp"
+#include "structure/io/TextNumbers.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::coupling {
@@ -52,20 +55,29 @@ class FoamLexer {
   };
 
   explicit FoamLexer(fs::path file) : file_(std::move(file)) {
+    std::error_code ec;
     std::ifstream in(file_, std::ios::binary);
-    if (!in) {
+    if (!in || !fs::is_regular_file(file_, ec)) {
       fs::path gz = file_;
       gz += ".gz";
-      if (fs::exists(gz))
+      if (fs::exists(gz, ec))
         throw InputError(
             fmt::format("{}: compressed polyMesh files are not supported; uncompress them (gunzip "
                         "{}) or set writeCompression off and run foamFormatConvert",
                         gz.string(), gz.string()));
       throw InputError(fmt::format("{}: no such file or not readable", file_.string()));
     }
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    text_ = ss.str();
+    const std::uintmax_t size = fs::file_size(file_, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot read its size: {}", file_.string(), ec.message()));
+    try {
+      text_.resize(std::size_t(size));
+    } catch (const std::exception&) {  // bad_alloc or length_error
+      throw InputError(
+          fmt::format("{}: the file ({} bytes) is too large to read into memory", file_.string(), size));
+    }
+    in.read(text_.data(), std::streamsize(size));
+    if (std::uintmax_t(in.gcount()) != size)
+      throw InputError(fmt::format("{}: read {} of its {} bytes", file_.string(), in.gcount(), size));
   }
 
   const fs::path& file() const { return file_; }
@@ -95,20 +107,29 @@ class FoamLexer {
     const Token t = next();
     if (!t.is(c)) fail(t.line, fmt::format("expected '{}' {} but found {}", c, what, show(t)));
   }
+  // Numbers are range-checked: an integer that overflows or a real beyond double (1e400), nan or inf is an
+  // error, never a silent 0 (std::from_chars leaves its output untouched on overflow).
   long integer(const char* what) {
     const Token t = next();
-    long v = 0;
-    const char* end = t.text.data() + t.text.size();
-    if (t.kind != Token::Word || std::from_chars(t.text.data(), end, v).ptr != end)
+    long long v = 0;
+    const structure::NumberStatus status =
+        t.kind == Token::Word ? structure::parseInteger(t.text, v) : structure::NumberStatus::Malformed;
+    if (status == structure::NumberStatus::Malformed)
       fail(t.line, fmt::format("expected an integer ({}) but found {}", what, show(t)));
-    return v;
+    if (status != structure::NumberStatus::Ok)
+      fail(t.line,
+           structure::describeNumberProblem(status, t.text, fmt::format("an integer ({})", what).c_str()));
+    return long(v);
   }
   double number(const char* what) {
     const Token t = next();
     double v = 0;
-    const char* end = t.text.data() + t.text.size();
-    if (t.kind != Token::Word || std::from_chars(t.text.data(), end, v).ptr != end)
+    const structure::NumberStatus status =
+        t.kind == Token::Word ? structure::parseReal(t.text, v) : structure::NumberStatus::Malformed;
+    if (status == structure::NumberStatus::Malformed)
       fail(t.line, fmt::format("expected a number ({}) but found {}", what, show(t)));
+    if (status != structure::NumberStatus::Ok)
+      fail(t.line, structure::describeNumberProblem(status, t.text, fmt::format("a {}", what).c_str()));
     return v;
   }
 
@@ -141,14 +162,22 @@ class FoamLexer {
     return cls;
   }
 
-  // Opens a list: "N (" or "(" (count unknown, returned as -1).
-  long openList(const char* what) {
+  // Opens a list: "N (" or "(" (count unknown, returned as -1). A count is checked against the rest of the
+  // file (each entry takes at least `minBytesEach` bytes), so a reader may reserve that much.
+  long openList(const char* what, std::size_t minBytesEach) {
     long count = -1;
+    const int countLine = peek().line;
     if (!peek().is('(')) count = integer(what);
     const Token t = next();
     if (t.is('{')) fail(t.line, fmt::format("uniform list 'N{{...}}' not supported for {}", what));
     if (!t.is('(')) fail(t.line, fmt::format("expected '(' to open the {} list but found {}", what, show(t)));
     if (count < -1) fail(t.line, fmt::format("negative {} count", what));
+    const std::size_t left = text_.size() - pos_;
+    if (count > 0 && static_cast<unsigned long>(count) > left / minBytesEach)
+      fail(countLine,
+           fmt::format("the {} list announces {} entries, but the {} bytes left in the file can hold at "
+                       "most {}",
+                       what, count, left, left / minBytesEach));
     return count;
   }
   // True (and consumes it) at the ')' closing a list.
@@ -229,7 +258,7 @@ struct Patch {
 std::vector<Patch> readBoundary(const fs::path& file) {
   FoamLexer lex(file);
   lex.header();
-  const long count = lex.openList("patch");
+  const long count = lex.openList("patch", 16);  // "p{nFaces 0;startFace 0;}"
   std::vector<Patch> patches;
   while (!lex.closes()) {
     const FoamLexer::Token name = lex.next();
@@ -261,16 +290,13 @@ std::vector<Patch> readBoundary(const fs::path& file) {
         value.push_back(v);
       }
       if (key.text == "nFaces" || key.text == "startFace") {
-        long n = -1;
-        const bool ok =
-            value.size() == 1 &&
-            std::from_chars(value[0].text.data(), value[0].text.data() + value[0].text.size(), n).ptr ==
-                value[0].text.data() + value[0].text.size() &&
-            n >= 0;
+        long long n = -1;
+        const bool ok = value.size() == 1 &&
+                        structure::parseInteger(value[0].text, n) == structure::NumberStatus::Ok && n >= 0;
         if (!ok)
-          lex.fail(key.line,
-                   fmt::format("patch '{}': {} must be one non-negative integer", p.name, key.text));
-        (key.text == "nFaces" ? p.nFaces : p.startFace) = n;
+          lex.fail(key.line, fmt::format("patch '{}': {} must be one non-negative integer (at most {})",
+                                         p.name, key.text, LLONG_MAX));
+        (key.text == "nFaces" ? p.nFaces : p.startFace) = long(n);
       }
     }
     if (p.nFaces < 0 || p.startFace < 0)
@@ -284,7 +310,7 @@ std::vector<Patch> readBoundary(const fs::path& file) {
 std::vector<std::array<double, 3>> readPoints(const fs::path& file) {
   FoamLexer lex(file);
   lex.header();
-  const long count = lex.openList("point");
+  const long count = lex.openList("point", 7);  // "(0 0 0)"
   std::vector<std::array<double, 3>> points;
   if (count > 0) points.reserve(std::size_t(count));
   while (!lex.closes()) {
@@ -315,16 +341,21 @@ void readFaces(const fs::path& file, long numPoints, std::vector<int>& offsets, 
   };
   if (cls == "faceCompactList") {
     std::vector<long> starts;
-    const long n = lex.openList("face offset");
+    const long n = lex.openList("face offset", 2);
     while (!lex.closes()) starts.push_back(lex.integer("face offset"));
     lex.checkCount(n, long(starts.size()), lex.line(), "face offset");
-    const long m = lex.openList("face label");
+    const long m = lex.openList("face label", 2);
     long face = 0;
     while (!lex.closes()) {
       while (face + 1 < long(starts.size()) && long(nodes.size()) >= starts[std::size_t(face) + 1]) ++face;
       nodes.push_back(label(face));
     }
     lex.checkCount(m, long(nodes.size()), lex.line(), "face label");
+    // Offsets run from 0 to the number of labels: otherwise labels would be lost or shifted between faces.
+    if (!starts.empty() && (starts.front() != 0 || starts.back() != long(nodes.size())))
+      lex.fail(lex.line(), fmt::format("face offsets run from {} to {}, but must run from 0 to the number of "
+                                       "labels, {}",
+                                       starts.front(), starts.back(), nodes.size()));
     for (std::size_t f = 1; f < starts.size(); ++f) {
       if (starts[f] < starts[f - 1] || starts[f] > long(nodes.size()))
         lex.fail(lex.line(),
@@ -333,7 +364,7 @@ void readFaces(const fs::path& file, long numPoints, std::vector<int>& offsets, 
     }
     return;
   }
-  const long count = lex.openList("face");
+  const long count = lex.openList("face", 8);  // "3(0 1 2)"
   if (count > 0) offsets.reserve(std::size_t(count) + 1);
   while (!lex.closes()) {
     const long face = long(offsets.size()) - 1;
@@ -358,10 +389,13 @@ bool endsWithMsh(const std::string& s) {
 
 }  // namespace
 
-InterfaceMesh readOpenFoamPatch(const fs::path& caseDir, const std::string& patch) {
+namespace {
+
+InterfaceMesh readOpenFoamPatchUnguarded(const fs::path& caseDir, const std::string& patch) {
   const fs::path dir = caseDir / "constant" / "polyMesh";
+  std::error_code ec;
   for (const char* name : {"points", "faces", "boundary"})
-    if (!fs::exists(dir / name) && !fs::exists(dir / (std::string(name) + ".gz")))
+    if (!fs::exists(dir / name, ec) && !fs::exists(dir / (std::string(name) + ".gz"), ec))
       throw InputError(
           fmt::format("{}: no such file (is {} an OpenFOAM case?)", (dir / name).string(), caseDir.string()));
   const fs::path boundaryFile = dir / "boundary";
@@ -380,16 +414,28 @@ InterfaceMesh readOpenFoamPatch(const fs::path& caseDir, const std::string& patc
   std::vector<int> offsets, nodes;
   readFaces(dir / "faces", long(points.size()), offsets, nodes);
   const long numFaces = long(offsets.size()) - 1;
-  if (it->startFace + it->nFaces > numFaces)
-    throw InputError(fmt::format("{}:{}: patch '{}' spans faces {}..{}, but {} has {} faces",
-                                 boundaryFile.string(), it->line, patch, it->startFace,
-                                 it->startFace + it->nFaces - 1, (dir / "faces").string(), numFaces));
+  // Written so that it cannot overflow: startFace and nFaces may each be near LONG_MAX.
+  if (it->startFace > numFaces || it->nFaces > numFaces - it->startFace)
+    throw InputError(fmt::format("{}:{}: patch '{}' has {} faces from face {}, but {} has {} faces",
+                                 boundaryFile.string(), it->line, patch, it->nFaces, it->startFace,
+                                 (dir / "faces").string(), numFaces));
   const int first = offsets[std::size_t(it->startFace)];
   std::vector<int> patchOffsets,
       patchNodes(nodes.begin() + first, nodes.begin() + offsets[std::size_t(it->startFace + it->nFaces)]);
   for (long f = it->startFace; f <= it->startFace + it->nFaces; ++f)
     patchOffsets.push_back(offsets[std::size_t(f)] - first);
   return compact(caseDir.string() + ":" + patch, points, patchOffsets, patchNodes);
+}
+
+}  // namespace
+
+InterfaceMesh readOpenFoamPatch(const fs::path& caseDir, const std::string& patch) {
+  try {
+    return readOpenFoamPatchUnguarded(caseDir, patch);
+  } catch (const std::bad_alloc&) {
+    // The lists are checked against the file sizes; this machine has not even that much memory.
+    throw InputError(fmt::format("{}: not enough memory to read patch '{}'", caseDir.string(), patch));
+  }
 }
 
 InterfaceMesh readGmshInterface(const fs::path& file, const std::string& group) {
@@ -418,7 +464,14 @@ InterfaceMesh readGmshInterface(const fs::path& file, const std::string& group) 
   return compact(group.empty() ? file.string() : file.string() + ":" + group, data.points, offsets, nodes);
 }
 
-InterfaceMesh readInterface(const std::string& spec) {
+namespace {
+
+bool isDirectory(const std::string& path) {
+  std::error_code ec;  // a name too long or unreadable is no directory (the non-throwing overload)
+  return fs::is_directory(path, ec);
+}
+
+InterfaceMesh readInterfaceUnguarded(const std::string& spec) {
   const char* forms = "expected FILE.msh, FILE.msh:GROUP or CASE_DIR:PATCH";
   if (spec.empty()) throw InputError(fmt::format("empty interface mesh name ({})", forms));
   InterfaceMesh m;
@@ -429,18 +482,29 @@ InterfaceMesh readInterface(const std::string& spec) {
     if (tail.empty()) throw InputError(fmt::format("'{}': nothing after ':' ({})", spec, forms));
     if (endsWithMsh(head))
       m = readGmshInterface(head, tail);
-    else if (fs::is_directory(head))
+    else if (isDirectory(head))
       m = readOpenFoamPatch(head, tail);
     else
       throw InputError(
           fmt::format("'{}': {} is neither a .msh file nor a directory ({})", spec, head, forms));
-  } else if (fs::is_directory(spec)) {
+  } else if (isDirectory(spec)) {
     throw InputError(fmt::format("'{}' is a directory: name the OpenFOAM patch as {}:PATCH", spec, spec));
   } else {
     throw InputError(fmt::format("'{}': {}", spec, forms));
   }
   m.name = spec;
   return m;
+}
+
+}  // namespace
+
+InterfaceMesh readInterface(const std::string& spec) {
+  try {
+    return readInterfaceUnguarded(spec);
+  } catch (const std::bad_alloc&) {
+    // The readers allocate at most a small multiple of the file sizes; this machine has not that much.
+    throw InputError(fmt::format("{}: not enough memory to read this interface mesh", spec));
+  }
 }
 
 }  // namespace fsi::coupling

@@ -6,8 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
+#include <utility>
 #include <vector>
+
+#include "structure/model/Error.hpp"
 
 namespace fsi::coupling {
 
@@ -155,9 +159,51 @@ nlohmann::json reportJson(const ProjectionReport& r) {
           {"factor_seconds", r.factorSeconds}};
 }
 
+// Coordinates near the limits of double (1e308) pass the readers but overflow the extents, squared distances
+// and areas the check computes: refuse them, and never report a check as passed beside a NaN.
+void checkCoordinates(const InterfaceMesh& a, const InterfaceMesh& b) {
+  // Squared areas are fourth powers of lengths: they must stay finite.
+  const double limit = std::sqrt(std::sqrt(std::numeric_limits<double>::max()));
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const InterfaceMesh* m : {&a, &b})
+    for (std::size_t i = 0; i < m->points.size(); ++i) {
+      const Vec3& p = m->points[i];
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (!std::isfinite(p[k]))
+          throw InputError(
+              fmt::format("{}: point {} ({}, {}, {}) is not finite", m->name, i, p[0], p[1], p[2]));
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    }
+  for (std::size_t k = 0; k < 3; ++k)
+    if (lo[k] <= hi[k] && std::max(std::abs(lo[k]), std::abs(hi[k])) > limit)  // lo > hi: no points
+      throw InputError(
+          fmt::format("{} and {}: coordinate {} spans [{:.6g}, {:.6g}]: beyond {:.3g}, squared "
+                      "areas overflow; rescale the meshes",
+                      a.name, b.name, "xyz"[k], lo[k], hi[k], limit));
+}
+
+void checkFinite(const MapCheckResult& r) {
+  for (const DirectionCheck& d : r.directions) {
+    const std::pair<const char*, double> values[] = {{"largest gap", d.report.maxGap},
+                                                     {"linear field max error", d.linear.max},
+                                                     {"linear field rms error", d.linear.rms},
+                                                     {"quadratic field max error", d.quadratic.max},
+                                                     {"quadratic field rms error", d.quadratic.rms},
+                                                     {"force error", d.forceError},
+                                                     {"moment error", d.momentError}};
+    for (const auto& [what, value] : values)
+      if (!std::isfinite(value))
+        throw InputError(fmt::format("map-check {} -> {}: the {} is {} (degenerate or extreme coordinates)",
+                                     d.report.source, d.report.target, what, value));
+  }
+}
+
 }  // namespace
 
 MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const MapCheckOptions& options) {
+  checkCoordinates(a, b);
   MapCheckResult r;
   r.meshA = a.name;
   r.meshB = b.name;
@@ -168,6 +214,7 @@ MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const
   const ProjectionOptions po{options.mass, r.tolerance, options.quadratureLevel};
   r.directions[0] = check(a, b, fields, po, options);
   r.directions[1] = check(b, a, fields, po, options);
+  checkFinite(r);
   return r;
 }
 

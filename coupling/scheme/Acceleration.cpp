@@ -1,5 +1,7 @@
 #include "coupling/scheme/Acceleration.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -7,8 +9,13 @@
 
 namespace fsi::coupling {
 
+// Relaxation factors are limited to (0, 1]: on an added-mass problem the iteration Jacobian has eigenvalues
+// -lambda <= 0, and a factor above 1 contracts no mode better than 1 does (docs/COUPLING.md). The adapter's
+// option table (CouplingOptions) has the same ranges.
 ConstantRelaxation::ConstantRelaxation(double omega) : omega_(omega) {
-  if (!(omega > 0.0)) throw std::invalid_argument("ConstantRelaxation: omega must be > 0");
+  if (!(omega > 0.0 && omega <= 1.0))
+    throw std::invalid_argument(
+        fmt::format("ConstantRelaxation: omega = {:g}, valid: 0 < omega <= 1", omega));
 }
 
 Eigen::VectorXd ConstantRelaxation::compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) {
@@ -16,8 +23,12 @@ Eigen::VectorXd ConstantRelaxation::compute(const Eigen::VectorXd& d, const Eige
 }
 
 Aitken::Aitken(AitkenOptions options) : opt_(options), omega_(options.initialOmega) {
-  if (!(opt_.minOmega > 0.0 && opt_.minOmega <= opt_.maxOmega && opt_.initialOmega > 0.0))
-    throw std::invalid_argument("Aitken: need 0 < minOmega <= maxOmega and initialOmega > 0");
+  if (!(opt_.minOmega > 0.0 && opt_.minOmega <= opt_.maxOmega))
+    throw std::invalid_argument("Aitken: need 0 < minOmega <= maxOmega");
+  // The first factor is clamped to [minOmega, maxOmega] like every other one.
+  if (!(opt_.initialOmega > 0.0 && opt_.initialOmega <= 1.0))
+    throw std::invalid_argument(
+        fmt::format("Aitken: initialOmega = {:g}, valid: 0 < initialOmega <= 1", opt_.initialOmega));
 }
 
 double Aitken::clampOmega(double w) const {
@@ -49,9 +60,14 @@ void Aitken::onTimeWindowComplete() {
 }
 
 IqnIls::IqnIls(IqnIlsOptions options) : opt_(options) {
-  if (!(opt_.initialOmega > 0.0) || opt_.reuseSteps < 0 || opt_.maxColumns < 1 ||
-      !(opt_.filterTolerance >= 0))
-    throw std::invalid_argument("IqnIls: invalid options");
+  if (!(opt_.initialOmega > 0.0 && opt_.initialOmega <= 1.0))
+    throw std::invalid_argument(
+        fmt::format("IqnIls: initialOmega = {:g}, valid: 0 < initialOmega <= 1", opt_.initialOmega));
+  if (opt_.reuseSteps < 0)
+    throw std::invalid_argument(fmt::format("IqnIls: reuseSteps = {}, valid: >= 0", opt_.reuseSteps));
+  if (opt_.maxColumns < 1)
+    throw std::invalid_argument(fmt::format("IqnIls: maxColumns = {}, valid: >= 1", opt_.maxColumns));
+  if (!(opt_.filterTolerance >= 0)) throw std::invalid_argument("IqnIls: filterTolerance must be >= 0");
 }
 
 std::string IqnIls::name() const {

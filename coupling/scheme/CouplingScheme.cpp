@@ -1,5 +1,7 @@
 #include "coupling/scheme/CouplingScheme.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -17,6 +19,13 @@ CouplingScheme::CouplingScheme(const CouplingConfig& config, StructureSolver& st
     if (!acceleration_)
       throw std::invalid_argument("CouplingScheme: the implicit scheme needs an Acceleration");
     if (config_.maxIterations < 1) throw std::invalid_argument("CouplingScheme: maxIterations must be >= 1");
+    // A relative residual: 1 or more accepts any first iterate, 0 leaves only the absolute test.
+    if (!(config_.relativeTolerance > 0.0 && config_.relativeTolerance < 1.0))
+      throw std::invalid_argument(
+          fmt::format("CouplingScheme: relativeTolerance = {:g}, valid: 0 < relativeTolerance < 1",
+                      config_.relativeTolerance));
+    if (!(config_.absoluteTolerance >= 0.0))
+      throw std::invalid_argument("CouplingScheme: absoluteTolerance must be >= 0");
   }
 }
 

@@ -1,276 +1,269 @@
 #include "structure/io/GmshReader.hpp"
 
 #include <fmt/format.h>
-#include <gmsh.h>
 
 #include <algorithm>
 #include <array>
 #include <cstddef>
-#include <fstream>
+#include <cstdint>
 #include <map>
-#include <mutex>
 #include <new>
+#include <numeric>
+#include <set>
 #include <string>
-#include <system_error>
-#include <unordered_map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
+#include "structure/io/MshReader.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::structure {
 namespace {
 
-// Gmsh element type numbers (MSH format).
-constexpr int kLine2 = 1;
-constexpr int kTriangle3 = 2;
-constexpr int kQuad4 = 3;
-constexpr int kPoint = 15;
+using DimTag = MshContent::DimTag;
 
-// The Gmsh API is one global session: serialise readers so two threads never share it.
-std::mutex& gmshMutex() {
-  static std::mutex m;
-  return m;
-}
-
-// Finalises the Gmsh session on every path, including exceptions.
-class GmshSession {
- public:
-  GmshSession() { gmsh::initialize(0, nullptr, /*readConfigFiles=*/false); }
-  ~GmshSession() {
-    try {
-      gmsh::finalize();
-    } catch (...) {
-      // A destructor must not throw; nothing useful to do if Gmsh fails to shut down.
-    }
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
-
-std::string lastGmshError() {
-  std::string error;
-  try {
-    gmsh::logger::getLastError(error);
-  } catch (...) {
-  }
-  return error.empty() ? std::string("unknown Gmsh error") : error;
-}
-
-// Elements and nodes attached to one Gmsh entity, so physical groups can be resolved afterwards.
+// What one entity holds once duplicates are merged: indices into the kept triangles and lines, and the
+// nodes of its point elements or classified on it (indices into MshContent::nodeTags).
 struct EntityContent {
   std::vector<int> triangles;
   std::vector<int> lines;
-  std::vector<std::size_t> nodeTags;
+  std::vector<int> pointNodes;
 };
 
-using DimTag = std::pair<int, int>;
-
 struct Triangle {
-  std::array<std::size_t, 3> nodes;
+  std::array<int, 3> nodes;  // indices into MshContent::nodeTags
   long tag;
 };
 struct Line {
-  std::array<std::size_t, 2> nodes;
+  std::array<int, 2> nodes;
   long tag;
 };
+
+// Finds the first copy of an element (same node sequence) among those kept so far: open addressing over
+// indices into the kept elements, sized once for all of them (a node-based hash map was a third of the
+// read time of a million triangles).
+template <class Element>
+class FirstCopies {
+ public:
+  explicit FirstCopies(std::size_t capacity) {
+    std::size_t size = 16;
+    while (size < 2 * capacity) size *= 2;
+    slots_.assign(size, -1);
+  }
+  /// Index into `kept` of the element with these nodes; appends one with `tag` if there is none yet.
+  int findOrAdd(const decltype(Element::nodes)& nodes, long tag, std::vector<Element>& kept) {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (const int v : nodes) h = (h ^ std::uint64_t(std::uint32_t(v))) * 0xff51afd7ed558ccdull;
+    for (std::size_t i = std::size_t(h ^ (h >> 29)) & (slots_.size() - 1);;
+         i = (i + 1) & (slots_.size() - 1)) {
+      if (slots_[i] < 0) {
+        slots_[i] = int(kept.size());
+        kept.push_back({nodes, tag});
+        return slots_[i];
+      }
+      const auto& other = kept[std::size_t(slots_[i])].nodes;
+      if (std::equal(nodes.begin(), nodes.end(), other.begin())) return slots_[i];
+    }
+  }
+
+ private:
+  std::vector<int> slots_;
+};
+
+// Sorts `v` and removes repeats; `universe` bounds the values (a bitmap beats sorting for long lists).
+void sortUnique(std::vector<int>& v, std::size_t universe) {
+  if (v.size() > universe / 8) {
+    std::vector<char> present(universe, 0);
+    for (const int x : v) present[std::size_t(x)] = 1;
+    v.clear();
+    for (std::size_t x = 0; x < universe; ++x)
+      if (present[x]) v.push_back(int(x));
+    return;
+  }
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
 
 double squaredDistance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
   const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
   return dx * dx + dy * dy + dz * dz;
 }
 
-void sortUnique(std::vector<int>& v) {
-  std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end()), v.end());
-}
-
-MeshData extractMesh(const std::string& where, const std::string& meshName) {
-  std::vector<std::size_t> allNodeTags;
-  std::vector<double> allCoords, parametric;
-  gmsh::model::mesh::getNodes(allNodeTags, allCoords, parametric, -1, -1, false, false);
-  std::unordered_map<std::size_t, std::array<double, 3>> coords;
-  coords.reserve(allNodeTags.size());
-  for (std::size_t i = 0; i < allNodeTags.size(); ++i) {
-    coords[allNodeTags[i]] = {allCoords[3 * i], allCoords[3 * i + 1], allCoords[3 * i + 2]};
-  }
-  const auto coordOf = [&](std::size_t nodeTag, long elementTag) -> const std::array<double, 3>& {
-    const auto it = coords.find(nodeTag);
-    if (it == coords.end()) {
-      throw InputError(fmt::format("Gmsh mesh '{}': element {} refers to node {}, which does not exist",
-                                   where, elementTag, nodeTag));
-    }
-    return it->second;
+MeshData buildMesh(const MshContent& msh, const std::string& meshName) {
+  const std::string& where = msh.file;
+  // Elements in the order the Gmsh library gave them to the earlier reader (results must not depend on
+  // the reader): by entity (dimension, then tag), triangles before quadrangles, file order otherwise.
+  std::vector<std::size_t> order(msh.elements.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  const auto key = [&](std::size_t i) {
+    const MshContent::Element& e = msh.elements[i];
+    return std::tie(e.entity, e.type);
   };
+  const auto before = [&](std::size_t a, std::size_t b) { return key(a) < key(b); };
+  if (!std::is_sorted(order.begin(), order.end(), before))
+    std::stable_sort(order.begin(), order.end(), before);
 
   std::vector<Triangle> triangles;
   std::vector<Line> lines;
   std::map<DimTag, EntityContent> entities;
+  for (const auto& [entity, physicals] : msh.entities) entities[entity];
 
-  // MSH 2.2 stores an element once per physical group of its entity, under different tags: without this
+  // MSH 2 stores an element once per physical group of its entity, under different tags: without this
   // check a surface in two groups would get every membrane twice. Copies with the same node sequence are
   // merged into the first one read (whose tag is kept).
-  std::map<std::array<std::size_t, 3>, int> triangleIndex;
-  std::map<std::array<std::size_t, 2>, int> lineIndex;
-  const auto addTriangle = [&](const std::array<std::size_t, 3>& nodes, long tag, EntityContent& content) {
-    const auto [it, isNew] = triangleIndex.emplace(nodes, static_cast<int>(triangles.size()));
-    if (isNew) triangles.push_back({nodes, tag});
-    content.triangles.push_back(it->second);
+  std::size_t maxTriangles = 0, maxLines = 0;
+  for (const MshContent::Element& e : msh.elements) {
+    maxTriangles += e.type == kMshTriangle3 ? 1 : (e.type == kMshQuad4 ? 2 : 0);
+    maxLines += e.type == kMshLine2 ? 1 : 0;
+  }
+  FirstCopies<Triangle> triangleCopies(maxTriangles);
+  FirstCopies<Line> lineCopies(maxLines);
+  triangles.reserve(maxTriangles);
+  lines.reserve(maxLines);
+  const auto addTriangle = [&](const std::array<int, 3>& nodes, long tag, EntityContent& content) {
+    content.triangles.push_back(triangleCopies.findOrAdd(nodes, tag, triangles));
   };
-  const auto addLine = [&](const std::array<std::size_t, 2>& nodes, long tag, EntityContent& content) {
-    const auto [it, isNew] = lineIndex.emplace(nodes, static_cast<int>(lines.size()));
-    if (isNew) lines.push_back({nodes, tag});
-    content.lines.push_back(it->second);
+  const auto addLine = [&](const std::array<int, 2>& nodes, long tag, EntityContent& content) {
+    content.lines.push_back(lineCopies.findOrAdd(nodes, tag, lines));
   };
 
-  gmsh::vectorpair dimTags;
-  gmsh::model::getEntities(dimTags, -1);
-  for (const auto& [dim, tag] : dimTags) {
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t>> elementTags, nodeTags;
-    gmsh::model::mesh::getElements(types, elementTags, nodeTags, dim, tag);
-    EntityContent& content = entities[{dim, tag}];
-    for (std::size_t t = 0; t < types.size(); ++t) {
-      const auto& tags = elementTags[t];
-      const auto& nodes = nodeTags[t];
-      switch (types[t]) {
-        case kPoint:
-          content.nodeTags.insert(content.nodeTags.end(), nodes.begin(), nodes.end());
-          break;
-        case kLine2:
-          for (std::size_t e = 0; e < tags.size(); ++e) {
-            addLine({nodes[2 * e], nodes[2 * e + 1]}, static_cast<long>(tags[e]), content);
-          }
-          break;
-        case kTriangle3:
-          for (std::size_t e = 0; e < tags.size(); ++e) {
-            addTriangle({nodes[3 * e], nodes[3 * e + 1], nodes[3 * e + 2]}, static_cast<long>(tags[e]),
-                        content);
-          }
-          break;
-        case kQuad4:
-          for (std::size_t e = 0; e < tags.size(); ++e) {
-            const long elementTag = static_cast<long>(tags[e]);
-            const std::size_t a = nodes[4 * e], b = nodes[4 * e + 1], c = nodes[4 * e + 2],
-                              d = nodes[4 * e + 3];
-            // The shorter diagonal gives the better-shaped pair; both halves keep the quad's node order.
-            const bool splitAC = squaredDistance(coordOf(a, elementTag), coordOf(c, elementTag)) <=
-                                 squaredDistance(coordOf(b, elementTag), coordOf(d, elementTag));
-            if (splitAC) {
-              addTriangle({a, b, c}, elementTag, content);
-              addTriangle({a, c, d}, elementTag, content);
-            } else {
-              addTriangle({a, b, d}, elementTag, content);
-              addTriangle({b, c, d}, elementTag, content);
-            }
-          }
-          break;
-        default: {
-          std::string typeName;
-          int typeDim = 0, order = 0, numNodes = 0, numPrimary = 0;
-          std::vector<double> localCoords;
-          gmsh::model::mesh::getElementProperties(types[t], typeName, typeDim, order, numNodes, localCoords,
-                                                  numPrimary);
-          throw InputError(fmt::format(
-              "Gmsh mesh '{}': element {} has unsupported Gmsh element type {} ('{}'); supported types are "
-              "2-node lines (1), 3-node triangles (2) and 4-node quadrangles (3), points (15) are ignored",
-              where, tags.empty() ? 0 : tags.front(), types[t], typeName));
+  for (const std::size_t i : order) {
+    const MshContent::Element& e = msh.elements[i];
+    const int* n = msh.elementNodes.data() + e.first;
+    EntityContent& content = entities[e.entity];
+    switch (e.type) {
+      case kMshPoint:
+        content.pointNodes.push_back(n[0]);
+        break;
+      case kMshLine2:
+        addLine({n[0], n[1]}, e.tag, content);
+        break;
+      case kMshTriangle3:
+        addTriangle({n[0], n[1], n[2]}, e.tag, content);
+        break;
+      case kMshQuad4: {
+        const auto& x = msh.nodeCoords;
+        // The shorter diagonal gives the better-shaped pair; both halves keep the quad's node order.
+        if (squaredDistance(x[std::size_t(n[0])], x[std::size_t(n[2])]) <=
+            squaredDistance(x[std::size_t(n[1])], x[std::size_t(n[3])])) {
+          addTriangle({n[0], n[1], n[2]}, e.tag, content);
+          addTriangle({n[0], n[2], n[3]}, e.tag, content);
+        } else {
+          addTriangle({n[0], n[1], n[3]}, e.tag, content);
+          addTriangle({n[1], n[2], n[3]}, e.tag, content);
         }
+        break;
       }
+      default:  // MshReader keeps no other type
+        throw InputError(fmt::format("{}: element {} of type {}", msh.where(e.where), e.tag, e.type));
     }
   }
-  if (triangles.empty() && lines.empty()) {
-    throw InputError(
-        fmt::format("Gmsh mesh '{}': the file contains no line, triangle or quadrangle elements", where));
-  }
+  for (const auto& [entityTag, node] : msh.pointEntityNodes)
+    entities[{0, entityTag}].pointNodes.push_back(node);
+  if (triangles.empty() && lines.empty())
+    throw InputError(fmt::format("{}: the file contains no line, triangle or quadrangle elements", where));
 
   // Points: only the nodes used by kept elements, in ascending tag order.
-  std::vector<std::size_t> used;
-  for (const auto& tri : triangles) used.insert(used.end(), tri.nodes.begin(), tri.nodes.end());
-  for (const auto& line : lines) used.insert(used.end(), line.nodes.begin(), line.nodes.end());
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
+  const std::size_t numNodes = msh.nodeTags.size();
+  std::vector<char> isUsed(numNodes, 0);
+  for (const Triangle& t : triangles)
+    for (const int v : t.nodes) isUsed[std::size_t(v)] = 1;
+  for (const Line& l : lines)
+    for (const int v : l.nodes) isUsed[std::size_t(v)] = 1;
+  std::vector<int> used;
+  for (std::size_t v = 0; v < numNodes; ++v)
+    if (isUsed[v]) used.push_back(int(v));
+  const auto byTag = [&](int a, int b) {
+    return msh.nodeTags[std::size_t(a)] < msh.nodeTags[std::size_t(b)];
+  };
+  if (!std::is_sorted(used.begin(), used.end(), byTag)) std::sort(used.begin(), used.end(), byTag);
 
   MeshData mesh;
   mesh.name = meshName;
-  std::unordered_map<std::size_t, int> indexOf;
-  indexOf.reserve(used.size());
+  std::vector<int> indexOf(numNodes, -1);
   mesh.points.reserve(used.size());
   mesh.pointTags.reserve(used.size());
-  for (const std::size_t nodeTag : used) {
-    const auto it = coords.find(nodeTag);
-    if (it == coords.end()) {
-      throw InputError(
-          fmt::format("Gmsh mesh '{}': an element refers to node {}, which does not exist", where, nodeTag));
+  for (const int v : used) {
+    indexOf[std::size_t(v)] = static_cast<int>(mesh.points.size());
+    mesh.points.push_back(msh.nodeCoords[std::size_t(v)]);
+    mesh.pointTags.push_back(msh.nodeTags[std::size_t(v)]);
+  }
+  mesh.triangles.reserve(triangles.size());
+  mesh.triangleTags.reserve(triangles.size());
+  for (const Triangle& t : triangles) {
+    mesh.triangles.push_back({indexOf[std::size_t(t.nodes[0])], indexOf[std::size_t(t.nodes[1])],
+                              indexOf[std::size_t(t.nodes[2])]});
+    mesh.triangleTags.push_back(t.tag);
+  }
+  mesh.lines.reserve(lines.size());
+  mesh.lineTags.reserve(lines.size());
+  for (const Line& l : lines) {
+    mesh.lines.push_back({indexOf[std::size_t(l.nodes[0])], indexOf[std::size_t(l.nodes[1])]});
+    mesh.lineTags.push_back(l.tag);
+  }
+
+  // Physical groups: (dimension, tag) -> its entities.
+  std::map<DimTag, std::set<DimTag>> groups;
+  for (const auto& [entity, physicals] : msh.entities)
+    for (const int p : physicals) groups[{entity.first, p}].insert(entity);
+  // Each group lists its members: a file that puts entities into very many groups would make the output
+  // grow as groups x elements. Real meshes have a handful of groups per element; refuse the absurd.
+  std::size_t listed = 0;
+  for (const auto& [group, members] : groups)
+    for (const DimTag& entity : members) {
+      const EntityContent& c = entities.at(entity);
+      listed += c.triangles.size() + c.lines.size() + c.pointNodes.size();
     }
-    indexOf[nodeTag] = static_cast<int>(mesh.points.size());
-    mesh.points.push_back(it->second);
-    mesh.pointTags.push_back(static_cast<long>(nodeTag));
-  }
-  for (const auto& tri : triangles) {
-    mesh.triangles.push_back({indexOf[tri.nodes[0]], indexOf[tri.nodes[1]], indexOf[tri.nodes[2]]});
-    mesh.triangleTags.push_back(tri.tag);
-  }
-  for (const auto& line : lines) {
-    mesh.lines.push_back({indexOf[line.nodes[0]], indexOf[line.nodes[1]]});
-    mesh.lineTags.push_back(line.tag);
-  }
-
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, -1);
-  for (const auto& [dim, groupTag] : groups) {
+  const std::size_t items = mesh.triangles.size() + mesh.lines.size() + msh.pointEntityNodes.size();
+  if (listed > 100 * items + 1000000)
+    throw InputError(
+        fmt::format("{}: its {} physical groups would list {} elements and nodes, more than 100 "
+                    "groups per element",
+                    where, groups.size(), listed));
+  for (const auto& [group, members] : groups) {
+    const auto [dim, groupTag] = group;
     if (dim > 2) continue;  // volume groups have no membrane or cable meaning
-    std::string name;
-    gmsh::model::getPhysicalName(dim, groupTag, name);
-    if (name.empty()) name = fmt::format("physical_{}_{}", dim, groupTag);
-
+    const auto named = msh.physicalNames.find(group);
+    const std::string name = named == msh.physicalNames.end() || named->second.empty()
+                                 ? fmt::format("physical_{}_{}", dim, groupTag)
+                                 : named->second;
     std::vector<int> groupTriangles, groupLines, groupNodes;
-    std::vector<int> entityTags;
-    gmsh::model::getEntitiesForPhysicalGroup(dim, groupTag, entityTags);
-    for (const int entityTag : entityTags) {
-      const auto found = entities.find({dim, entityTag});
-      if (found == entities.end()) continue;
-      const EntityContent& content = found->second;
+    for (const DimTag& entity : members) {
+      const EntityContent& content = entities.at(entity);
       for (const int t : content.triangles) {
         groupTriangles.push_back(t);
-        groupNodes.insert(groupNodes.end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
+        groupNodes.insert(groupNodes.end(), mesh.triangles[std::size_t(t)].begin(),
+                          mesh.triangles[std::size_t(t)].end());
       }
       for (const int l : content.lines) {
         groupLines.push_back(l);
-        groupNodes.insert(groupNodes.end(), mesh.lines[l].begin(), mesh.lines[l].end());
+        groupNodes.insert(groupNodes.end(), mesh.lines[std::size_t(l)].begin(),
+                          mesh.lines[std::size_t(l)].end());
       }
-      std::vector<std::size_t> pointNodes = content.nodeTags;
-      if (dim == 0) {
-        // Point entities may carry their node without a point element.
-        std::vector<std::size_t> classified;
-        std::vector<double> unusedCoords, unusedParametric;
-        gmsh::model::mesh::getNodes(classified, unusedCoords, unusedParametric, 0, entityTag, false, false);
-        pointNodes.insert(pointNodes.end(), classified.begin(), classified.end());
-      }
-      for (const std::size_t nodeTag : pointNodes) {
-        const auto it = indexOf.find(nodeTag);
-        if (it == indexOf.end()) {
-          throw InputError(fmt::format(
-              "Gmsh mesh '{}': physical group '{}' contains node {}, which belongs to no line or triangle",
-              where, name, nodeTag));
-        }
-        groupNodes.push_back(it->second);
+      for (const int v : content.pointNodes) {
+        if (indexOf[std::size_t(v)] < 0)
+          throw InputError(
+              fmt::format("{}: physical group '{}' contains node {}, which belongs to no line or "
+                          "triangle",
+                          where, name, msh.nodeTags[std::size_t(v)]));
+        groupNodes.push_back(indexOf[std::size_t(v)]);
       }
     }
-    sortUnique(groupNodes);
+    sortUnique(groupNodes, mesh.points.size());
     if (dim == 2) {
       auto& target = mesh.triangleGroups[name];
       target.insert(target.end(), groupTriangles.begin(), groupTriangles.end());
-      sortUnique(target);
+      sortUnique(target, mesh.triangles.size());
     } else if (dim == 1) {
       auto& target = mesh.lineGroups[name];
       target.insert(target.end(), groupLines.begin(), groupLines.end());
-      sortUnique(target);
+      sortUnique(target, mesh.lines.size());
     }
     // Groups of different dimensions may share a name: their nodes are merged.
     auto& nodes = mesh.nodeGroups[name];
     nodes.insert(nodes.end(), groupNodes.begin(), groupNodes.end());
-    sortUnique(nodes);
+    sortUnique(nodes, mesh.points.size());
   }
   return mesh;
 }
@@ -278,36 +271,11 @@ MeshData extractMesh(const std::string& where, const std::string& meshName) {
 }  // namespace
 
 MeshData readGmsh(const std::filesystem::path& file, const std::string& meshName) {
-  const std::string where = file.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) {
-    throw InputError(fmt::format("Gmsh mesh '{}': file not found", where));
-  }
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw InputError(fmt::format("Gmsh mesh '{}': not a regular file", where));
-  }
-  // Gmsh reports an unreadable file only through its log, so check readability here.
-  if (!std::ifstream(file, std::ios::binary)) {
-    throw InputError(fmt::format("Gmsh mesh '{}': file cannot be opened for reading", where));
-  }
-
-  const std::lock_guard<std::mutex> lock(gmshMutex());
-  const GmshSession session;
+  const MshContent msh = readMshFile(file);
   try {
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
-    gmsh::open(where);
-    return extractMesh(where, meshName);
-  } catch (const InputError&) {
-    throw;
+    return buildMesh(msh, meshName);
   } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::string& message) {  // Gmsh 4.8 throws its error message as a std::string
-    throw InputError(fmt::format("Gmsh mesh '{}': Gmsh cannot read it: {}", where, message));
-  } catch (const std::exception& e) {
-    throw InputError(fmt::format("Gmsh mesh '{}': Gmsh cannot read it: {}", where, e.what()));
-  } catch (...) {
-    throw InputError(fmt::format("Gmsh mesh '{}': Gmsh cannot read it: {}", where, lastGmshError()));
+    throw InputError(fmt::format("{}: not enough memory to build this mesh", file.string()));
   }
 }
 

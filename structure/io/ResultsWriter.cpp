@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <system_error>
@@ -146,6 +149,73 @@ struct Context {
   }
 };
 
+// Reading back (append mode). Failures name the file and object like the writes.
+std::string readStringAttribute(const Context& c, hid_t object, const char* name,
+                                const std::string& objectName) {
+  const std::string full = objectName + "@" + name;
+  const Hid attr = c.check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, "cannot open attribute", full);
+  const Hid type = c.check(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of", full);
+  const std::size_t size = H5Tget_size(type.get());
+  std::string value(size, '\0');
+  const Hid memType = c.check(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create string type for", full);
+  c.check(H5Tset_size(memType.get(), size), "cannot size string type for", full);
+  c.check(H5Aread(attr.get(), memType.get(), value.data()), "cannot read attribute", full);
+  value.resize(std::strlen(value.c_str()));
+  return value;
+}
+
+template <typename T>
+T readScalarAttribute(const Context& c, hid_t object, const char* name, hid_t memType,
+                      const std::string& objectName) {
+  const std::string full = objectName + "@" + name;
+  const Hid attr = c.check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, "cannot open attribute", full);
+  T value{};
+  c.check(H5Aread(attr.get(), memType, &value), "cannot read attribute", full);
+  return value;
+}
+
+// Dimensions and values of a dataset, read as memType (int or double).
+template <typename T>
+std::vector<T> readDataset(const Context& c, hid_t parent, const std::string& name,
+                           const std::string& fullName, hid_t memType, std::vector<hsize_t>& dims) {
+  const Hid dset =
+      c.check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "cannot open dataset", fullName);
+  const Hid space = c.check(H5Dget_space(dset.get()), H5Sclose, "cannot read the shape of", fullName);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) c.fail("cannot read the shape of", fullName);
+  dims.assign(static_cast<std::size_t>(rank), 0);
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<T> values(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  if (!values.empty())
+    c.check(H5Dread(dset.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), "cannot read dataset",
+            fullName);
+  return values;
+}
+
+// Names of the links in a group, in name order.
+std::vector<std::string> linkNames(const Context& c, hid_t group, const std::string& groupName) {
+  H5G_info_t info;
+  c.check(H5Gget_info(group, &info), "cannot list", groupName);
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t size =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (size < 0) c.fail("cannot list", groupName);
+    std::string name(static_cast<std::size_t>(size) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(size));
+    names.push_back(name);
+  }
+  return names;
+}
+
+FieldView::Center centerFromName(const std::string& name) {
+  if (name == "Triangle") return FieldView::Center::Triangle;
+  if (name == "Line") return FieldView::Center::Line;
+  return FieldView::Center::Node;
+}
+
 const char* centerName(FieldView::Center c) {
   switch (c) {
     case FieldView::Center::Node:
@@ -231,8 +301,15 @@ struct ResultsWriter::Impl {
   Hid steps;
   Hid tables;
   std::vector<StepRecord> records;
+  std::size_t nextIndex = 0;  // of the next step group (append mode: after the kept ones)
 
   Context ctx() const { return Context{h5Path}; }
+  static std::unique_ptr<Impl> prepare(fs::path h5File, int numNodes,
+                                       const std::vector<std::array<int, 3>>& triangles,
+                                       const std::vector<std::array<int, 2>>& lines);
+  void create(const std::vector<std::array<int, 3>>& triangles, const std::vector<std::array<int, 2>>& lines);
+  void open(double keepUntil, const std::vector<std::array<int, 3>>& triangles,
+            const std::vector<std::array<int, 2>>& lines);
 
   std::size_t count(FieldView::Center c) const {
     switch (c) {
@@ -359,57 +436,144 @@ void ResultsWriter::Impl::writeXdmf() const {
   }
 }
 
-ResultsWriter::ResultsWriter(fs::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
-                             std::vector<std::array<int, 2>> lines)
-    : impl_(std::make_unique<Impl>()) {
-  Impl& m = *impl_;
-  if (numNodes < 0) throw std::invalid_argument("ResultsWriter: negative node count");
-  auto checkConnectivity = [numNodes](const auto& elements, const char* kind) {
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-      for (const int node : elements[e]) {
-        if (node < 0 || node >= numNodes) {
-          throw std::invalid_argument(fmt::format("ResultsWriter: {} {} references node {} outside [0, {})",
-                                                  kind, e, node, numNodes));
-        }
+namespace {
+
+template <typename Element>
+void checkConnectivity(const std::vector<Element>& elements, int numNodes, const char* kind) {
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    for (const int node : elements[e]) {
+      if (node < 0 || node >= numNodes) {
+        throw std::invalid_argument(
+            fmt::format("ResultsWriter: {} {} references node {} outside [0, {})", kind, e, node, numNodes));
       }
     }
-  };
-  checkConnectivity(triangles, "triangle");
-  checkConnectivity(lines, "line");
-
-  m.h5Path = std::move(h5File);
-  m.xdmfPath = m.h5Path;
-  m.xdmfPath.replace_extension(".xdmf");
-  m.numNodes = numNodes;
-  m.numTriangles = triangles.size();
-  m.numLines = lines.size();
-
-  if (m.h5Path.has_parent_path()) {
-    std::error_code ec;
-    fs::create_directories(m.h5Path.parent_path(), ec);
-    if (ec) {
-      throw std::runtime_error(fmt::format("ResultsWriter: cannot create directory '{}': {}",
-                                           m.h5Path.parent_path().string(), ec.message()));
-    }
   }
+}
 
+}  // namespace
+
+void ResultsWriter::Impl::create(const std::vector<std::array<int, 3>>& triangles,
+                                 const std::vector<std::array<int, 2>>& lines) {
   const QuietHdf5 quiet;
-  const Context c = m.ctx();
-  m.file = c.check(H5Fcreate(m.h5Path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-                   "cannot create file", "");
-  c.writeScalarAttribute(m.file.get(), "num_nodes", H5T_STD_I64LE, H5T_NATIVE_LLONG,
+  const Context c = ctx();
+  file = c.check(H5Fcreate(h5Path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                 "cannot create file", "");
+  c.writeScalarAttribute(file.get(), "num_nodes", H5T_STD_I64LE, H5T_NATIVE_LLONG,
                          static_cast<long long>(numNodes), "/");
   {
-    const Hid mesh = c.createGroup(m.file.get(), "mesh", "/mesh");
+    const Hid mesh = c.createGroup(file.get(), "mesh", "/mesh");
     c.writeDataset(mesh.get(), "triangles", "/mesh/triangles", H5T_STD_I32LE, H5T_NATIVE_INT,
-                   triangles.data(), {m.numTriangles, 3});
+                   triangles.data(), {numTriangles, 3});
     c.writeDataset(mesh.get(), "lines", "/mesh/lines", H5T_STD_I32LE, H5T_NATIVE_INT, lines.data(),
-                   {m.numLines, 2});
+                   {numLines, 2});
   }
-  m.steps = c.createGroup(m.file.get(), "steps", "/steps");
-  m.tables = c.createGroup(m.file.get(), "tables", "/tables");
-  m.flush();
-  m.writeXdmf();  // an empty but valid index replaces any stale one from a previous run
+  steps = c.createGroup(file.get(), "steps", "/steps");
+  tables = c.createGroup(file.get(), "tables", "/tables");
+  flush();
+  writeXdmf();  // an empty but valid index replaces any stale one from a previous run
+}
+
+void ResultsWriter::Impl::open(double keepUntil, const std::vector<std::array<int, 3>>& triangles,
+                               const std::vector<std::array<int, 2>>& lines) {
+  const QuietHdf5 quiet;
+  const Context c = ctx();
+  file =
+      c.check(H5Fopen(h5Path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "cannot open for appending", "");
+  // The series must be of this mesh: a restart with another scene starts a new file instead.
+  const auto nodes = readScalarAttribute<long long>(c, file.get(), "num_nodes", H5T_NATIVE_LLONG, "/");
+  std::vector<hsize_t> triDims, lineDims;
+  const std::vector<int> tri =
+      readDataset<int>(c, file.get(), "mesh/triangles", "/mesh/triangles", H5T_NATIVE_INT, triDims);
+  const std::vector<int> lin =
+      readDataset<int>(c, file.get(), "mesh/lines", "/mesh/lines", H5T_NATIVE_INT, lineDims);
+  const bool same =
+      nodes == numNodes && tri.size() == 3 * triangles.size() && lin.size() == 2 * lines.size() &&
+      std::equal(tri.begin(), tri.end(), triangles.empty() ? nullptr : triangles.front().data()) &&
+      std::equal(lin.begin(), lin.end(), lines.empty() ? nullptr : lines.front().data());
+  if (!same)
+    throw std::runtime_error(fmt::format(
+        "ResultsWriter: cannot continue '{}': it holds another mesh ({} nodes, {} triangles, {} lines; this "
+        "run "
+        "has {}, {}, {}); move it away to start a new series",
+        h5Path.string(), nodes, tri.size() / 3, lin.size() / 2, numNodes, numTriangles, numLines));
+  steps = c.check(H5Gopen2(file.get(), "steps", H5P_DEFAULT), H5Gclose, "cannot open group", "/steps");
+  tables = c.check(H5Gopen2(file.get(), "tables", H5P_DEFAULT), H5Gclose, "cannot open group", "/tables");
+
+  std::vector<std::string> stale;
+  for (const std::string& name : linkNames(c, steps.get(), "/steps")) {
+    const std::string groupPath = "/steps/" + name;
+    const Hid group =
+        c.check(H5Gopen2(steps.get(), name.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group", groupPath);
+    const double time = readScalarAttribute<double>(c, group.get(), "time", H5T_NATIVE_DOUBLE, groupPath);
+    if (!(time <= keepUntil)) {
+      stale.push_back(name);
+      continue;
+    }
+    StepRecord r{name, time, {}};
+    for (const std::string& field : linkNames(c, group.get(), groupPath)) {
+      if (field == "coordinates") continue;
+      const std::string path = groupPath + "/" + field;
+      const Hid dset =
+          c.check(H5Dopen2(group.get(), field.c_str(), H5P_DEFAULT), H5Dclose, "cannot open dataset", path);
+      const Hid space = c.check(H5Dget_space(dset.get()), H5Sclose, "cannot read the shape of", path);
+      hsize_t dims[2] = {0, 1};
+      const int rank = H5Sget_simple_extent_ndims(space.get());
+      if (rank < 1 || rank > 2) c.fail("unexpected rank of", path);
+      H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+      r.fields.push_back({field, centerFromName(readStringAttribute(c, dset.get(), "center", path)),
+                          rank == 1 ? 1 : static_cast<int>(dims[1])});
+    }
+    nextIndex = std::max(nextIndex, static_cast<std::size_t>(std::stoul(name)) + 1);
+    records.push_back(std::move(r));
+  }
+  for (const std::string& name : stale)
+    c.check(H5Ldelete(steps.get(), name.c_str(), H5P_DEFAULT), "cannot drop the later step",
+            "/steps/" + name);
+  flush();
+  writeXdmf();
+}
+
+// Everything both constructors do before touching the file.
+std::unique_ptr<ResultsWriter::Impl> ResultsWriter::Impl::prepare(
+    fs::path h5File, int numNodes, const std::vector<std::array<int, 3>>& triangles,
+    const std::vector<std::array<int, 2>>& lines) {
+  if (numNodes < 0) throw std::invalid_argument("ResultsWriter: negative node count");
+  checkConnectivity(triangles, numNodes, "triangle");
+  checkConnectivity(lines, numNodes, "line");
+  auto m = std::make_unique<Impl>();
+  m->h5Path = std::move(h5File);
+  m->xdmfPath = m->h5Path;
+  m->xdmfPath.replace_extension(".xdmf");
+  m->numNodes = numNodes;
+  m->numTriangles = triangles.size();
+  m->numLines = lines.size();
+  if (m->h5Path.has_parent_path()) {
+    std::error_code ec;
+    fs::create_directories(m->h5Path.parent_path(), ec);
+    if (ec) {
+      throw std::runtime_error(fmt::format("ResultsWriter: cannot create directory '{}': {}",
+                                           m->h5Path.parent_path().string(), ec.message()));
+    }
+  }
+  return m;
+}
+
+ResultsWriter::ResultsWriter(fs::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
+                             std::vector<std::array<int, 2>> lines)
+    : impl_(Impl::prepare(std::move(h5File), numNodes, triangles, lines)) {
+  impl_->create(triangles, lines);
+}
+
+ResultsWriter ResultsWriter::append(fs::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
+                                    std::vector<std::array<int, 2>> lines, double keepUntil) {
+  ResultsWriter w;
+  w.impl_ = Impl::prepare(std::move(h5File), numNodes, triangles, lines);
+  std::error_code ec;
+  if (fs::exists(w.impl_->h5Path, ec))
+    w.impl_->open(keepUntil, triangles, lines);
+  else
+    w.impl_->create(triangles, lines);
+  return w;
 }
 
 ResultsWriter::~ResultsWriter() = default;  // Impl closes the file
@@ -450,7 +614,7 @@ void ResultsWriter::writeStep(double time, long step, const double* coordinates,
 
   const QuietHdf5 quiet;
   const Context c = m.ctx();
-  Impl::StepRecord record{stepGroupName(m.records.size()), time, {}};
+  Impl::StepRecord record{stepGroupName(m.nextIndex), time, {}};
   const std::string groupPath = "/steps/" + record.group;
   try {
     const Hid group = c.createGroup(m.steps.get(), record.group, groupPath);
@@ -477,12 +641,14 @@ void ResultsWriter::writeStep(double time, long step, const double* coordinates,
   }
   m.flush();
   m.records.push_back(std::move(record));
+  ++m.nextIndex;
   try {
     m.writeXdmf();
   } catch (...) {
     // Forget the step entirely so that the next call can reuse its index.
     H5Ldelete(m.steps.get(), m.records.back().group.c_str(), H5P_DEFAULT);
     m.records.pop_back();
+    --m.nextIndex;
     throw;
   }
 }
@@ -519,10 +685,92 @@ void ResultsWriter::writeTable(const std::string& name, const std::vector<std::s
   if (exists > 0) c.check(H5Ldelete(m.tables.get(), name.c_str(), H5P_DEFAULT), "cannot replace", groupPath);
   const Hid group = c.createGroup(m.tables.get(), name, groupPath);
   for (std::size_t i = 0; i < columns.size(); ++i) {
-    c.writeDataset(group.get(), columns[i], groupPath + "/" + columns[i], H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-                   data[i].data(), {data[i].size()});
+    const std::string path = groupPath + "/" + columns[i];
+    const Hid dset = c.writeDataset(group.get(), columns[i], path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                                    data[i].data(), {data[i].size()});
+    // HDF5 lists links by name: the position keeps the table's column order for readTable.
+    c.writeScalarAttribute(dset.get(), "column", H5T_STD_I64LE, H5T_NATIVE_LLONG, static_cast<long long>(i),
+                           path);
   }
   m.flush();
+}
+
+std::pair<std::vector<std::string>, std::vector<std::vector<double>>> ResultsWriter::readTable(
+    const std::string& name) const {
+  const Impl& m = *impl_;
+  m.requireOpen("readTable");
+  checkName(name, "table");
+  const QuietHdf5 quiet;
+  const Context c = m.ctx();
+  const std::string groupPath = "/tables/" + name;
+  const htri_t exists = H5Lexists(m.tables.get(), name.c_str(), H5P_DEFAULT);
+  if (exists < 0) c.fail("cannot query", groupPath);
+  if (exists == 0) return {};
+  const Hid group =
+      c.check(H5Gopen2(m.tables.get(), name.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group", groupPath);
+  struct Column {
+    long long position;
+    std::string name;
+    std::vector<double> data;
+  };
+  std::vector<Column> cols;
+  for (const std::string& column : linkNames(c, group.get(), groupPath)) {
+    const std::string path = groupPath + "/" + column;
+    std::vector<hsize_t> dims;
+    Column col{std::numeric_limits<long long>::max(), column,
+               readDataset<double>(c, group.get(), column, path, H5T_NATIVE_DOUBLE, dims)};
+    const Hid dset =
+        c.check(H5Dopen2(group.get(), column.c_str(), H5P_DEFAULT), H5Dclose, "cannot open dataset", path);
+    if (H5Aexists(dset.get(), "column") > 0)
+      col.position = readScalarAttribute<long long>(c, dset.get(), "column", H5T_NATIVE_LLONG, path);
+    cols.push_back(std::move(col));
+  }
+  std::stable_sort(cols.begin(), cols.end(),
+                   [](const Column& a, const Column& b) { return a.position < b.position; });
+  std::pair<std::vector<std::string>, std::vector<std::vector<double>>> out;
+  for (Column& col : cols) {
+    out.first.push_back(col.name);
+    out.second.push_back(std::move(col.data));
+  }
+  return out;
+}
+
+void ResultsWriter::writeRootAttribute(const std::string& name, const std::vector<double>& values) {
+  Impl& m = *impl_;
+  m.requireOpen("writeRootAttribute");
+  checkName(name, "attribute");
+  const QuietHdf5 quiet;
+  const Context c = m.ctx();
+  const std::string full = "/@" + name;
+  const htri_t exists = H5Aexists(m.file.get(), name.c_str());
+  if (exists < 0) c.fail("cannot query", full);
+  if (exists > 0) c.check(H5Adelete(m.file.get(), name.c_str()), "cannot replace", full);
+  const hsize_t n = values.size();
+  const Hid space = c.check(H5Screate_simple(1, &n, nullptr), H5Sclose, "cannot create dataspace for", full);
+  const Hid attr =
+      c.check(H5Acreate2(m.file.get(), name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              H5Aclose, "cannot create attribute", full);
+  if (n > 0) c.check(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, values.data()), "cannot write attribute", full);
+  m.flush();
+}
+
+std::vector<double> ResultsWriter::rootAttribute(const std::string& name) const {
+  const Impl& m = *impl_;
+  m.requireOpen("rootAttribute");
+  const QuietHdf5 quiet;
+  const Context c = m.ctx();
+  const std::string full = "/@" + name;
+  const htri_t exists = H5Aexists(m.file.get(), name.c_str());
+  if (exists < 0) c.fail("cannot query", full);
+  if (exists == 0) return {};
+  const Hid attr =
+      c.check(H5Aopen(m.file.get(), name.c_str(), H5P_DEFAULT), H5Aclose, "cannot open attribute", full);
+  const Hid space = c.check(H5Aget_space(attr.get()), H5Sclose, "cannot read the shape of", full);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> values(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  if (!values.empty())
+    c.check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, values.data()), "cannot read attribute", full);
+  return values;
 }
 
 void ResultsWriter::close() {
@@ -531,6 +779,9 @@ void ResultsWriter::close() {
 
 int ResultsWriter::stepsWritten() const {
   return static_cast<int>(impl_->records.size());
+}
+double ResultsWriter::lastStepTime() const {
+  return impl_->records.empty() ? -std::numeric_limits<double>::infinity() : impl_->records.back().time;
 }
 const fs::path& ResultsWriter::h5Path() const {
   return impl_->h5Path;

@@ -8,7 +8,12 @@
 //   /steps/<000000>/           attributes time (double), step (int64)
 //   /steps/<000000>/coordinates (N x 3, double)
 //   /steps/<000000>/<field>     (count) or (count x components), double; attribute center
-//   /tables/<name>/<column>     (rows), double
+//   /tables/<name>/<column>     (rows), double; attribute column (its position in the table)
+//   /@restart_times             (optional) times at which a restarted run continued the series
+//
+// Append mode (ResultsWriter::append) continues an existing series, e.g. after a restart: steps later than
+// the restart time are dropped first (a restart from an earlier time must not leave a stale future), the rest
+// of the file (mesh, kept steps, tables) stays. Space of dropped steps is not reclaimed (h5repack does that).
 //
 // Crash safety: after every writeStep/writeTable the HDF5 file is flushed and only then is the XDMF index
 // replaced (temporary file + rename), so the index never references data that is not on disk.
@@ -18,6 +23,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fsi::structure {
@@ -43,6 +49,12 @@ class ResultsWriter {
   /// .xdmf. Throws std::invalid_argument for out-of-range connectivity, std::runtime_error on I/O failure.
   ResultsWriter(std::filesystem::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
                 std::vector<std::array<int, 2>> lines);
+  /// Continues the series in h5File: keeps its steps with time <= keepUntil and drops the later ones, then
+  /// writes further steps after them. The file's mesh must be the one given (else std::runtime_error naming
+  /// the file); a missing file is created as by the constructor.
+  static ResultsWriter append(std::filesystem::path h5File, int numNodes,
+                              std::vector<std::array<int, 3>> triangles,
+                              std::vector<std::array<int, 2>> lines, double keepUntil);
   ~ResultsWriter();
   ResultsWriter(ResultsWriter&&) noexcept;
   ResultsWriter& operator=(ResultsWriter&&) noexcept;
@@ -57,15 +69,28 @@ class ResultsWriter {
   void writeTable(const std::string& name, const std::vector<std::string>& columns,
                   const std::vector<std::vector<double>>& data);
 
+  /// The table /tables/<name> as written: column names in their order and the columns (empty if absent).
+  std::pair<std::vector<std::string>, std::vector<std::vector<double>>> readTable(
+      const std::string& name) const;
+
+  /// Stores (or replaces) a double-array attribute of the file's root group; rootAttribute reads it back
+  /// (empty if absent).
+  void writeRootAttribute(const std::string& name, const std::vector<double>& values);
+  std::vector<double> rootAttribute(const std::string& name) const;
+
   /// Flushes and closes the file; idempotent. Later writes throw std::logic_error.
   void close();
 
+  /// Steps in the series (in append mode including the kept ones).
   int stepsWritten() const;
+  /// Time of the last step in the series; -infinity if there is none.
+  double lastStepTime() const;
   const std::filesystem::path& h5Path() const;
   const std::filesystem::path& xdmfPath() const;
 
  private:
   struct Impl;
+  ResultsWriter() = default;
   std::unique_ptr<Impl> impl_;
 };
 

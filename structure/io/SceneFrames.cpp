@@ -5,14 +5,19 @@
 
 namespace fsi::structure {
 
-SceneFrames::SceneFrames(const Scene& scene, const std::filesystem::path& file) : scene_(scene) {
+SceneFrames::SceneFrames(const Scene& scene, const std::filesystem::path& file,
+                         std::optional<double> keepUntil)
+    : scene_(scene) {
   const Model& m = *scene.model;
   std::vector<std::array<int, 3>> tris(m.membranes.count);
   for (int e = 0; e < m.membranes.count; ++e)
     tris[e] = {m.membranes.conn[3 * e], m.membranes.conn[3 * e + 1], m.membranes.conn[3 * e + 2]};
   std::vector<std::array<int, 2>> lines(m.cables.count);
   for (int e = 0; e < m.cables.count; ++e) lines[e] = {m.cables.conn[2 * e], m.cables.conn[2 * e + 1]};
-  writer_ = std::make_unique<ResultsWriter>(file, m.nodes.count, std::move(tris), std::move(lines));
+  writer_ = keepUntil
+                ? std::make_unique<ResultsWriter>(ResultsWriter::append(file, m.nodes.count, std::move(tris),
+                                                                        std::move(lines), *keepUntil))
+                : std::make_unique<ResultsWriter>(file, m.nodes.count, std::move(tris), std::move(lines));
 }
 
 void SceneFrames::write(double time, long step) {
@@ -51,7 +56,6 @@ void SceneFrames::write(double time, long step) {
     views.push_back({"cable_force", FieldView::Center::Line, 1, tension_.data()});
   }
   writer_->writeStep(time, step, N.x.data(), views);
-  lastTime_ = time;
 }
 
 }  // namespace fsi::structure

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "structure/effects/MembraneForces.hpp"
@@ -15,12 +16,14 @@ namespace fsi::structure {
 
 class SceneFrames {
  public:
-  /// Creates (truncates) `file` and writes the mesh connectivity.
-  SceneFrames(const Scene& scene, const std::filesystem::path& file);
+  /// Creates (truncates) `file` and writes the mesh connectivity; with `keepUntil`, continues the series in
+  /// `file` instead, dropping its frames later than keepUntil (ResultsWriter::append).
+  SceneFrames(const Scene& scene, const std::filesystem::path& file,
+              std::optional<double> keepUntil = std::nullopt);
 
   /// One frame of the scene's current state (positions, velocities and forces as last evaluated).
   void write(double time, long step);
-  double lastTime() const { return lastTime_; }
+  double lastTime() const { return writer_->lastStepTime(); }
   ResultsWriter& writer() { return *writer_; }
 
  private:
@@ -28,7 +31,6 @@ class SceneFrames {
   std::unique_ptr<ResultsWriter> writer_;
   std::vector<double> u_, r_, major_, minor_, tension_;
   MembraneStressField stress_;
-  double lastTime_ = -1;
 };
 
 }  // namespace fsi::structure

@@ -84,18 +84,23 @@ class SetResolver {
     named_[name] = {std::move(sel), path};
   }
 
-  std::vector<int> nodes(const YAML::Node& sel, const std::string& path, int depth = 0) const {
-    std::vector<int> out = nodesRaw(sel, path, depth);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+  std::vector<int> nodes(const YAML::Node& sel, const std::string& path) const {
+    std::vector<int> out = nodesRaw(sel, path);
+    sortUnique(out);
     if (out.empty()) throw InputError(locate(file_, sel, path) + ": selects no nodes");
     return out;
   }
 
-  std::vector<int> triangles(const YAML::Node& sel, const std::string& path, int depth = 0) const {
-    std::vector<int> out = trianglesRaw(sel, path, depth);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+  /// Resolves the set `name` as a node selection (through the memo and the cycle check).
+  void resolveNamed(const std::string& name) const {
+    const Named& set = named_.at(name);
+    if (nodesByName(name, set.sel, set.path).empty())
+      throw InputError(locate(file_, set.sel, set.path) + ": selects no nodes");
+  }
+
+  std::vector<int> triangles(const YAML::Node& sel, const std::string& path) const {
+    std::vector<int> out = trianglesRaw(sel, path);
+    sortUnique(out);
     if (out.empty()) throw InputError(locate(file_, sel, path) + ": selects no triangles");
     return out;
   }
@@ -105,6 +110,46 @@ class SetResolver {
     YAML::Node sel;
     std::string path;
   };
+  using Memo = std::map<std::string, std::vector<int>>;
+
+  static void sortUnique(std::vector<int>& v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+
+  // Appends a part of a union. Long unions (a list of sets that overlap, or one set listed many times) are
+  // deduplicated on the way so that the list never grows much beyond the number of entities.
+  static void append(std::vector<int>& out, const std::vector<int>& part, std::size_t entities) {
+    out.insert(out.end(), part.begin(), part.end());
+    if (out.size() > 2 * entities + 1024) sortUnique(out);
+  }
+
+  // A named set is resolved once per kind and remembered: sets built from one another in a chain cost one
+  // resolution each, however deep the chain or often a set is used. `resolving_` holds the sets whose
+  // resolution is under way, so a set met again there closes a cycle, which is reported with its members.
+  template <class Resolve>
+  std::vector<int> namedSet(const std::string& name, const Named& set, const YAML::Node& at,
+                            const std::string& path, Memo& memo, Resolve resolve) const {
+    if (const auto m = memo.find(name); m != memo.end()) return m->second;
+    const auto open = std::find(resolving_.begin(), resolving_.end(), name);
+    if (open != resolving_.end()) {
+      std::string cycle;
+      for (auto it = open; it != resolving_.end(); ++it) cycle += *it + " -> ";
+      throw InputError(locate(file_, at, path) +
+                       fmt::format(": sets refer to each other in a cycle: {}{}", cycle, name));
+    }
+    resolving_.push_back(name);
+    std::vector<int> out;
+    try {
+      out = resolve(set.sel, set.path);
+    } catch (...) {
+      resolving_.pop_back();
+      throw;
+    }
+    resolving_.pop_back();
+    sortUnique(out);
+    return memo.emplace(name, std::move(out)).first->second;
+  }
 
   int meshIndex(const std::string& name, const YAML::Node& at, const std::string& path) const {
     for (std::size_t m = 0; m < model_.meshes.size(); ++m)
@@ -133,12 +178,10 @@ class SetResolver {
     return out;
   }
 
-  std::vector<int> nodesByName(const std::string& s, const YAML::Node& at, const std::string& path,
-                               int depth) const {
-    if (auto it = named_.find(s); it != named_.end()) {
-      if (depth > 20) throw InputError(locate(file_, at, path) + ": sets refer to each other in a cycle");
-      return nodesRaw(it->second.sel, it->second.path, depth + 1);
-    }
+  std::vector<int> nodesByName(const std::string& s, const YAML::Node& at, const std::string& path) const {
+    if (auto it = named_.find(s); it != named_.end())
+      return namedSet(s, it->second, at, path, nodeMemo_,
+                      [this](const YAML::Node& sel, const std::string& p) { return nodesRaw(sel, p); });
     const auto slash = s.find('/');
     const int m = meshIndex(s.substr(0, slash), at, path);
     const MeshMap& mm = model_.meshes[m];
@@ -168,12 +211,11 @@ class SetResolver {
     return out;
   }
 
-  std::vector<int> trianglesByName(const std::string& s, const YAML::Node& at, const std::string& path,
-                                   int depth) const {
-    if (auto it = named_.find(s); it != named_.end()) {
-      if (depth > 20) throw InputError(locate(file_, at, path) + ": sets refer to each other in a cycle");
-      return trianglesRaw(it->second.sel, it->second.path, depth + 1);
-    }
+  std::vector<int> trianglesByName(const std::string& s, const YAML::Node& at,
+                                   const std::string& path) const {
+    if (auto it = named_.find(s); it != named_.end())
+      return namedSet(s, it->second, at, path, triangleMemo_,
+                      [this](const YAML::Node& sel, const std::string& p) { return trianglesRaw(sel, p); });
     const auto slash = s.find('/');
     const int m = meshIndex(s.substr(0, slash), at, path);
     const MeshMap& mm = model_.meshes[m];
@@ -197,14 +239,12 @@ class SetResolver {
     return out;
   }
 
-  std::vector<int> nodesRaw(const YAML::Node& sel, const std::string& path, int depth) const {
-    if (sel.IsScalar()) return nodesByName(sel.Scalar(), sel, path, depth);
+  std::vector<int> nodesRaw(const YAML::Node& sel, const std::string& path) const {
+    if (sel.IsScalar()) return nodesByName(sel.Scalar(), sel, path);
     if (sel.IsSequence()) {
       std::vector<int> out;
-      for (std::size_t i = 0; i < sel.size(); ++i) {
-        auto part = nodesRaw(sel[i], fmt::format("{}[{}]", path, i), depth);
-        out.insert(out.end(), part.begin(), part.end());
-      }
+      for (std::size_t i = 0; i < sel.size(); ++i)
+        append(out, nodesRaw(sel[i], fmt::format("{}[{}]", path, i)), std::size_t(model_.nodes.count));
       return out;
     }
     YamlMap m(sel, file_, path);
@@ -219,7 +259,7 @@ class SetResolver {
       if (!(len > 0)) p.failAt("normal", "must not be zero");
       const double tol = m.number("tolerance", 1e-9);
       std::vector<int> pool =
-          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth) : std::vector<int>();
+          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among")) : std::vector<int>();
       if (!m.has("among")) {
         pool.resize(N.count);
         for (int i = 0; i < N.count; ++i) pool[i] = i;
@@ -235,7 +275,7 @@ class SetResolver {
       const auto lo = b.vec3("min"), hi = b.vec3("max");
       b.finish({"min", "max"});
       std::vector<int> pool =
-          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth) : std::vector<int>();
+          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among")) : std::vector<int>();
       if (!m.has("among")) {
         pool.resize(N.count);
         for (int i = 0; i < N.count; ++i) pool[i] = i;
@@ -249,7 +289,7 @@ class SetResolver {
     } else if (m.has("nearest")) {
       const auto p = m.vec3("nearest");
       std::vector<int> pool =
-          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among"), depth) : std::vector<int>();
+          m.has("among") ? nodesRaw(m.raw("among"), m.childPath("among")) : std::vector<int>();
       if (!m.has("among")) {
         pool.resize(N.count);
         for (int i = 0; i < N.count; ++i) pool[i] = i;
@@ -270,7 +310,8 @@ class SetResolver {
       std::map<long, int> byTag;
       for (std::size_t i = 0; i < mm.node.size(); ++i)
         byTag[i < mm.source.pointTags.size() ? mm.source.pointTags[i] : long(i + 1)] = mm.node[i];
-      for (long id : m.integers("ids")) {
+      for (long id :
+           m.integers("ids", {std::numeric_limits<long>::min(), std::numeric_limits<long>::max()})) {
         auto it = byTag.find(id);
         if (it == byTag.end()) m.failAt("ids", fmt::format("mesh '{}' has no node {}", mesh, id));
         out.push_back(it->second);
@@ -284,14 +325,13 @@ class SetResolver {
     return out;
   }
 
-  std::vector<int> trianglesRaw(const YAML::Node& sel, const std::string& path, int depth) const {
-    if (sel.IsScalar()) return trianglesByName(sel.Scalar(), sel, path, depth);
+  std::vector<int> trianglesRaw(const YAML::Node& sel, const std::string& path) const {
+    if (sel.IsScalar()) return trianglesByName(sel.Scalar(), sel, path);
     if (sel.IsSequence()) {
       std::vector<int> out;
-      for (std::size_t i = 0; i < sel.size(); ++i) {
-        auto part = trianglesRaw(sel[i], fmt::format("{}[{}]", path, i), depth);
-        out.insert(out.end(), part.begin(), part.end());
-      }
+      for (std::size_t i = 0; i < sel.size(); ++i)
+        append(out, trianglesRaw(sel[i], fmt::format("{}[{}]", path, i)),
+               std::size_t(model_.membranes.count));
       return out;
     }
     throw InputError(
@@ -302,6 +342,8 @@ class SetResolver {
   const Model& model_;
   std::string file_;
   std::map<std::string, Named> named_;
+  mutable Memo nodeMemo_, triangleMemo_;
+  mutable std::vector<std::string> resolving_;  // outermost first
 };
 
 int componentIndex(const YamlMap& m, const std::string& key, const std::vector<std::string>& allowed) {
@@ -415,9 +457,9 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       rs.backstep = sv.boolean("backstep", true);
       rs.tolerance = sv.number("tolerance", 1e-3);
       if (!(rs.tolerance > 0)) sv.failAt("tolerance", "must be > 0");
-      rs.maxIterations = sv.integer("max_iterations", 200000);
+      rs.maxIterations = sv.integer("max_iterations", 200000, {1, std::numeric_limits<long>::max()});
       if (rs.maxIterations < 1) sv.failAt("max_iterations", "must be >= 1");
-      rs.increments = int(sv.integer("increments", 1));
+      rs.increments = int(sv.integer("increments", 1, {1, std::numeric_limits<int>::max()}));
       if (rs.increments < 1) sv.failAt("increments", "must be >= 1");
       rs.loadTime = sv.number("load_time", 0.0);
       rs.autoMass = sv.boolean("auto_mass", true);
@@ -466,7 +508,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     if (tc.integrator.fixedDt < 0) t.failAt("fixed_dt", "must be > 0 (or absent for the automatic step)");
     tc.integrator.maxDt = t.number("max_dt", 1e300);
     if (!(tc.integrator.maxDt > 0)) t.failAt("max_dt", "must be > 0");
-    tc.monitorEvery = t.integer("monitor_every", 100);
+    tc.monitorEvery = t.integer("monitor_every", 100, {1, std::numeric_limits<long>::max()});
     if (tc.monitorEvery < 1) t.failAt("monitor_every", "must be >= 1");
     tc.energyTolerance = t.number("energy_tolerance", 0.05);
     if (!(tc.energyTolerance > 0)) t.failAt("energy_tolerance", "must be > 0");
@@ -490,7 +532,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     // Resolve every set once, used or not, so that a typo in an unused set is still reported.
     for (const auto& name : s.keys()) {
       const YAML::Node sel = s.node()[name];
-      if (sel.IsScalar() || sel.IsSequence() || sel.IsMap()) sets.nodes(sel, s.childPath(name));
+      if (sel.IsScalar() || sel.IsSequence() || sel.IsMap()) sets.resolveNamed(name);
     }
   }
 
@@ -501,7 +543,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     for (std::size_t i = 0; i < list.size(); ++i) {
       YamlMap c(list[i], fileName, fmt::format("constraints[{}]", i));
       if (c.has("fix")) {
-        const auto nodes = sets.nodes(c.raw("nodes"), c.childPath("nodes"));
+        const auto nodes = sets.nodes(c.required("nodes"), c.childPath("nodes"));
         for (const auto& comp : c.strings("fix")) {
           static const std::vector<std::string> valid{"x", "y", "z", "all"};
           if (std::find(valid.begin(), valid.end(), comp) == valid.end())
@@ -538,7 +580,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
         if (count == 0) c.failAt("symmetry", "no node lies on this plane (check point, normal, tolerance)");
         c.finish({"symmetry"});
       } else if (c.has("prescribe")) {
-        const auto nodes = sets.nodes(c.raw("nodes"), c.childPath("nodes"));
+        const auto nodes = sets.nodes(c.required("nodes"), c.childPath("nodes"));
         YamlMap p = c.map("prescribe");
         const int comp = componentIndex(p, "component", {"x", "y", "z"});
         const double amp = p.number("amplitude");
@@ -606,7 +648,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     };
     if (fx.has("pressure")) {
       for (const YamlMap& p : listOf("pressure")) {
-        const auto tris = sets.triangles(p.raw("triangles"), p.childPath("triangles"));
+        const auto tris = sets.triangles(p.required("triangles"), p.childPath("triangles"));
         const double value = p.number("value");
         const TimeFunction fn = readTimeFunction(p, "function");
         p.finish({"triangles", "value", "function"});
@@ -621,7 +663,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     }
     if (fx.has("nodal_forces")) {
       for (const YamlMap& p : listOf("nodal_forces")) {
-        const auto nodes = sets.nodes(p.raw("nodes"), p.childPath("nodes"));
+        const auto nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
         const auto f = p.vec3("force");
         const TimeFunction fn = readTimeFunction(p, "function");
         p.finish({"nodes", "force", "function"});
@@ -648,7 +690,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   // Coupling: the triangles that receive the flow's pressure field (an effect like any other).
   if (top.has("coupling")) {
     YamlMap c = top.map("coupling");
-    const auto tris = sets.triangles(c.raw("interface"), c.childPath("interface"));
+    const auto tris = sets.triangles(c.required("interface"), c.childPath("interface"));
     const std::string rule = c.choice("load_in_window", {"mean", "end", "linear"}, "mean");
     scene.interfaceLoadRule = rule == "mean"  ? WindowLoad::Mean
                               : rule == "end" ? WindowLoad::End
@@ -695,6 +737,12 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   if (top.has("probes")) {
     YamlMap ps = top.map("probes");
     for (const auto& name : ps.keys()) {
+      // The name becomes a column of /tables/probes in results.h5 (next to 'time') and a key of summary.json.
+      if (name.empty() || name == "." || name == "time" || name.find('/') != std::string::npos ||
+          std::any_of(name.begin(), name.end(), [](char ch) { return (ch >= 0 && ch < 0x20) || ch == 0x7F; }))
+        ps.failAt(name, fmt::format("'{}' cannot name a probe: it must be non-empty, not 'time' or '.', and "
+                                    "without '/' or control characters",
+                                    name));
       YamlMap p = ps.map(name);
       ProbeSpec spec;
       spec.name = name;
@@ -706,7 +754,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
                                                              {"sum", ProbeSpec::Reduce::Sum}};
       if (type == "displacement" || type == "position") {
         spec.type = type == "position" ? ProbeSpec::Type::Position : ProbeSpec::Type::Displacement;
-        spec.nodes = sets.nodes(p.raw("nodes"), p.childPath("nodes"));
+        spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
         spec.component = componentIndex(p, "component", {"x", "y", "z", "magnitude", "radial"});
         spec.center = p.vec3("center", {0, 0, 0});
         spec.reduce = reduces.at(p.choice("reduce", {"value", "mean", "max", "min"}, "value"));
@@ -719,17 +767,17 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       } else if (type == "reaction") {
         spec.type = ProbeSpec::Type::Reaction;
         spec.reduce = ProbeSpec::Reduce::Sum;
-        spec.nodes = sets.nodes(p.raw("nodes"), p.childPath("nodes"));
+        spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
         spec.component = componentIndex(p, "component", {"x", "y", "z", "magnitude"});
         p.finish({"type", "nodes", "component"});
       } else if (type == "volume") {
         spec.type = ProbeSpec::Type::Volume;
-        spec.triangles = sets.triangles(p.raw("triangles"), p.childPath("triangles"));
+        spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
         spec.center = p.vec3("center", {0, 0, 0});
         p.finish({"type", "triangles", "center"});
       } else {
         spec.type = ProbeSpec::Type::Stress;
-        spec.triangles = sets.triangles(p.raw("triangles"), p.childPath("triangles"));
+        spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
         spec.quantity = p.choice("quantity", {"max_principal", "min_principal"}, "max_principal");
         spec.reduce = reduces.at(p.choice("reduce", {"max", "min", "mean"}, "max"));
         p.finish({"type", "triangles", "quantity", "reduce"});
@@ -747,22 +795,21 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
 
 Scene loadSceneFromString(const std::string& yaml, const std::string& name,
                           const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(
-        fmt::format("{}:{}:{}: YAML syntax error: {}", name, e.mark.line + 1, e.mark.column + 1, e.msg));
-  }
+  YAML::Node root = parseDocument(yaml, name);
   for (const auto& o : overrides) applyOverride(root, o);
+  checkDocument(root, name);  // after the overrides, so that their values are checked too
   return loadRoot(root, name, std::filesystem::path(name).parent_path());
 }
 
 Scene loadScene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(fmt::format("{}: is a directory, not a scene file", file.string()));
   std::ifstream in(file);
   if (!in) throw InputError(fmt::format("{}: cannot open scene file", file.string()));
   std::stringstream ss;
   ss << in.rdbuf();
+  if (in.bad()) throw InputError(fmt::format("{}: cannot read scene file", file.string()));
   return loadSceneFromString(ss.str(), file.string(), overrides);
 }
 

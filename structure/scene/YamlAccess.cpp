@@ -1,9 +1,14 @@
 #include "structure/scene/YamlAccess.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <unordered_map>
 
 #include "structure/model/Error.hpp"
 
@@ -16,29 +21,37 @@ std::string locate(const std::string& file, const YAML::Node& node, const std::s
   return fmt::format("{}:{}:{}: {}", file, m.line + 1, m.column + 1, where);
 }
 
-std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t bestD = std::max<std::size_t>(2, word.size() / 3) + 1;
-  for (const auto& c : candidates) {
-    std::vector<std::size_t> prev(c.size() + 1), cur(c.size() + 1);
-    for (std::size_t j = 0; j <= c.size(); ++j) prev[j] = j;
-    for (std::size_t i = 1; i <= word.size(); ++i) {
-      cur[0] = i;
-      for (std::size_t j = 1; j <= c.size(); ++j)
-        cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (word[i - 1] == c[j - 1] ? 0 : 1)});
-      std::swap(prev, cur);
-    }
-    if (prev[c.size()] < bestD) bestD = prev[c.size()], best = c;
-  }
-  return best;
-}
-
 namespace {
 std::string joinKeys(const std::vector<std::string>& keys) {
   std::string s;
   for (const auto& k : keys) s += (s.empty() ? "" : ", ") + k;
   return s;
 }
+
+// yaml-cpp refuses a number that overflows a double with a bare "bad conversion"; this tells the two apart.
+bool overflowsDouble(const std::string& s) {
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  return !s.empty() && end == s.c_str() + s.size() && errno == ERANGE && std::abs(v) > 1.0;
+}
+
+bool isIntegerLiteral(const std::string& s) {
+  const std::size_t digits = (!s.empty() && (s[0] == '+' || s[0] == '-')) ? 1 : 0;
+  return s.size() > digits && s.find_first_not_of("0123456789", digits) == std::string::npos;
+}
+
+std::string describe(IntRange r) {
+  if (r.hi == std::numeric_limits<long>::max()) return fmt::format("an integer >= {}", r.lo);
+  return fmt::format("an integer from {} to {}", r.lo, r.hi);
+}
+
+[[noreturn]] void outOfRange(const YAML::Node& n, const std::string& file, const std::string& path,
+                             IntRange r) {
+  throw InputError(locate(file, n, path) +
+                   fmt::format(": {} is out of range; expected {}", n.Scalar(), describe(r)));
+}
+
 }  // namespace
 
 double asNumber(const YAML::Node& n, const std::string& file, const std::string& path) {
@@ -47,14 +60,202 @@ double asNumber(const YAML::Node& n, const std::string& file, const std::string&
   try {
     v = n.as<double>();
   } catch (const YAML::Exception&) {
+    if (overflowsDouble(n.Scalar()))
+      throw InputError(
+          locate(file, n, path) +
+          fmt::format(": {} is out of range (numbers must be below about 1.8e308 in magnitude)", n.Scalar()));
     throw InputError(locate(file, n, path) + fmt::format(": expected a number, got '{}'", n.Scalar()));
   }
-  if (!std::isfinite(v)) throw InputError(locate(file, n, path) + ": expected a finite number");
+  if (!std::isfinite(v))
+    throw InputError(locate(file, n, path) + fmt::format(": expected a finite number, got '{}'", n.Scalar()));
   return v;
 }
 
+long asInteger(const YAML::Node& n, const std::string& file, const std::string& path, IntRange range) {
+  if (!n.IsScalar()) throw InputError(locate(file, n, path) + ": expected an integer");
+  const std::string& s = n.Scalar();
+  long long v = 0;
+  if (isIntegerLiteral(s)) {
+    // Parsed as an integer, not through double, so that large values stay exact.
+    errno = 0;
+    v = std::strtoll(s.c_str(), nullptr, 10);
+    if (errno == ERANGE) outOfRange(n, file, path, range);
+  } else {
+    const double d = asNumber(n, file, path);  // also accepts integral numbers such as 1e3
+    if (d != std::floor(d))
+      throw InputError(locate(file, n, path) + fmt::format(": expected an integer, got {}", s));
+    if (std::abs(d) > 9007199254740992.0)
+      outOfRange(n, file, path, range);  // beyond 2^53 a double is inexact
+    v = static_cast<long long>(d);
+  }
+  if (v < range.lo || v > range.hi) outOfRange(n, file, path, range);
+  return long(v);
+}
+
+// ---------------------------------------------------------------- whole-document checks
+namespace {
+
+// A scene nests fewer than 10 levels and yaml-cpp's parser stops at about 500, but aliases can chain nested
+// anchors to any depth, which would overflow the stack of every recursive reader.
+constexpr int kMaxDepth = 500;
+constexpr std::size_t kMaxValues = 20'000'000;  // keys and values after alias expansion
+
+// Offset of the first byte that does not belong to a valid UTF-8 sequence (no overlong forms, no
+// surrogates, nothing above U+10FFFF: what the JSON writer of summary.json accepts), or npos.
+std::size_t invalidUtf8At(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    std::size_t len = 0;
+    std::uint32_t cp = 0, min = 0;
+    if ((c & 0xE0) == 0xC0) {
+      len = 2, cp = c & 0x1F, min = 0x80;
+    } else if ((c & 0xF0) == 0xE0) {
+      len = 3, cp = c & 0x0F, min = 0x800;
+    } else if ((c & 0xF8) == 0xF0) {
+      len = 4, cp = c & 0x07, min = 0x10000;
+    } else {
+      return i;
+    }
+    if (i + len > s.size()) return i;
+    for (std::size_t k = 1; k < len; ++k) {
+      const auto d = static_cast<unsigned char>(s[i + k]);
+      if ((d & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (d & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
+    i += len;
+  }
+  return std::string::npos;
+}
+
+class DocumentChecker {
+ public:
+  explicit DocumentChecker(const std::string& file) : file_(file) {}
+
+  struct Extent {
+    std::size_t values = 1;  ///< keys and values below and including the node, aliases expanded
+    int height = 0;          ///< levels below the node
+  };
+
+  Extent check(const YAML::Node& n, const std::string& path, int depth) {
+    if (depth > kMaxDepth) fail(n, path, fmt::format("nested more than {} levels deep", kMaxDepth));
+    if (n.IsScalar()) {
+      checkText(n.Scalar(), n, path, "text");
+      return {};
+    }
+    if (!n.IsSequence() && !n.IsMap()) return {};
+    // An alias is the same node as its anchor: a container seen before is not walked again, which keeps
+    // "billion laughs" documents cheap here while their expanded size is still counted and limited.
+    if (const Extent* e = known(n)) {
+      if (depth + e->height > kMaxDepth)
+        fail(n, path, fmt::format("nested more than {} levels deep", kMaxDepth));
+      return *e;
+    }
+    for (const YAML::Node& open : open_)
+      if (open.is(n)) fail(n, path, "an alias refers to a node that contains it (a cycle)");
+    open_.push_back(n);
+    Extent total;
+    const auto add = [&](const Extent& e) {
+      total.values = std::min(total.values + e.values, kMaxValues + 1);
+      total.height = std::max(total.height, e.height + 1);
+    };
+    if (n.IsSequence()) {
+      std::size_t i = 0;
+      for (const auto& child : n) add(check(child, fmt::format("{}[{}]", path, i++), depth + 1));
+    } else {
+      std::unordered_map<std::string, YAML::Mark> seen;
+      for (const auto& kv : n) {
+        const YAML::Node& key = kv.first;
+        if (!key.IsScalar())
+          fail(key, path,
+               key.IsNull() ? "empty or null key" : "a key must be a plain name, not a list or a mapping");
+        const std::string& k = key.Scalar();
+        const std::string child = path.empty() ? k : path + "." + k;
+        checkText(k, key, path, "key");
+        const auto [first, fresh] = seen.emplace(k, key.Mark());
+        if (!fresh) {
+          const YAML::Mark& m = first->second;
+          fail(key, child,
+               fmt::format("duplicate key '{}' ({}); a key may appear only once in a mapping", k,
+                           m.is_null() || m.line < 0
+                               ? std::string("given before")
+                               : fmt::format("first at line {}, column {}", m.line + 1, m.column + 1)));
+        }
+        add({});
+        add(check(kv.second, child, depth + 1));
+      }
+    }
+    open_.pop_back();
+    if (total.values > kMaxValues)
+      fail(n, path, fmt::format("expands to more than {} keys and values (through aliases?)", kMaxValues));
+    done_[n.Mark().pos].push_back({n, total});
+    return total;
+  }
+
+ private:
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& path, const std::string& message) const {
+    throw InputError(locate(file_, n, path) + ": " + message);
+  }
+
+  void checkText(const std::string& s, const YAML::Node& n, const std::string& path, const char* what) const {
+    const std::size_t bad = invalidUtf8At(s);
+    if (bad != std::string::npos)
+      fail(n, path,
+           fmt::format("{} is not valid UTF-8 (byte 0x{:02X} at position {}); save the file as UTF-8", what,
+                       static_cast<unsigned>(static_cast<unsigned char>(s[bad])), bad));
+  }
+
+  const Extent* known(const YAML::Node& n) const {
+    const auto it = done_.find(n.Mark().pos);
+    if (it == done_.end()) return nullptr;
+    for (const auto& [node, extent] : it->second)
+      if (node.is(n)) return &extent;
+    return nullptr;
+  }
+
+  const std::string& file_;
+  std::unordered_map<int, std::vector<std::pair<YAML::Node, Extent>>> done_;  // by position, then identity
+  std::vector<YAML::Node> open_;  // containers on the current path
+};
+
+}  // namespace
+
+YAML::Node parseDocument(const std::string& text, const std::string& file) {
+  std::vector<YAML::Node> docs;
+  try {
+    docs = YAML::LoadAll(text);
+  } catch (const YAML::DeepRecursion& e) {  // its own message is "bad file"
+    throw InputError(fmt::format("{}:{}:{}: nested too deeply ({} levels)", file, e.mark.line + 1,
+                                 e.mark.column + 1, e.depth()));
+  } catch (const YAML::ParserException& e) {
+    if (e.mark.is_null() || e.mark.line < 0)
+      throw InputError(fmt::format("{}: YAML syntax error: {}", file, e.msg));
+    throw InputError(
+        fmt::format("{}:{}:{}: YAML syntax error: {}", file, e.mark.line + 1, e.mark.column + 1, e.msg));
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: YAML error: {}", file, e.what()));
+  }
+  // yaml-cpp's Load() would silently drop everything after a '---'; an empty trailing document is harmless.
+  for (std::size_t i = 1; i < docs.size(); ++i)
+    if (!docs[i].IsNull())
+      throw InputError(locate(file, docs[i], "") +
+                       ": a second YAML document starts here (after '---' or '...'); the file must hold one");
+  return docs.empty() ? YAML::Node() : docs.front();
+}
+
+void checkDocument(const YAML::Node& root, const std::string& file) {
+  DocumentChecker(file).check(root, "", 0);
+}
+
 YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
-    : node_(node), file_(std::move(file)), path_(std::move(path)) {  // YAML::Node is a handle: copies are cheap
+    : node_(node),
+      file_(std::move(file)),
+      path_(std::move(path)) {  // YAML::Node is a handle: copies are cheap
   if (!node_ || node_.IsNull()) {
     node_ = YAML::Node(YAML::NodeType::Map);
   } else if (!node_.IsMap()) {
@@ -64,7 +265,11 @@ YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
 
 std::vector<std::string> YamlMap::keys() const {
   std::vector<std::string> k;
-  for (const auto& kv : node_) k.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) {
+    if (!kv.first.IsScalar())
+      throw InputError(locate(file_, kv.first, path_) + ": a key must be a plain name");
+    k.push_back(kv.first.Scalar());
+  }
   return k;
 }
 
@@ -77,6 +282,10 @@ YAML::Node YamlMap::require(const std::string& key) const {
   if (!n) fail(fmt::format("missing required key '{}'", key));
   used_.insert(key);
   return n;
+}
+
+YAML::Node YamlMap::required(const std::string& key) const {
+  return require(key);
 }
 
 YAML::Node YamlMap::raw(const std::string& key) const {
@@ -98,14 +307,11 @@ double YamlMap::number(const std::string& key) const {
 double YamlMap::number(const std::string& key, double fallback) const {
   return has(key) ? number(key) : fallback;
 }
-long YamlMap::integer(const std::string& key) const {
-  const YAML::Node n = require(key);
-  const double v = asNumber(n, file_, childPath(key));
-  if (v != std::floor(v)) failAt(key, fmt::format("expected an integer, got {}", n.Scalar()));
-  return long(v);
+long YamlMap::integer(const std::string& key, IntRange range) const {
+  return asInteger(require(key), file_, childPath(key), range);
 }
-long YamlMap::integer(const std::string& key, long fallback) const {
-  return has(key) ? integer(key) : fallback;
+long YamlMap::integer(const std::string& key, long fallback, IntRange range) const {
+  return has(key) ? integer(key, range) : fallback;
 }
 bool YamlMap::boolean(const std::string& key, bool fallback) const {
   if (!has(key)) return fallback;
@@ -148,12 +354,13 @@ std::vector<double> YamlMap::numbers(const std::string& key) const {
     out.push_back(asNumber(n[i], file_, fmt::format("{}[{}]", childPath(key), i)));
   return out;
 }
-std::vector<long> YamlMap::integers(const std::string& key) const {
+std::vector<long> YamlMap::integers(const std::string& key, IntRange range) const {
+  const YAML::Node n = require(key);
+  if (n.IsScalar()) return {asInteger(n, file_, childPath(key), range)};
+  if (!n.IsSequence()) failAt(key, "expected an integer or a list of integers");
   std::vector<long> out;
-  for (double v : numbers(key)) {
-    if (v != std::floor(v)) failAt(key, fmt::format("expected integers, got {}", v));
-    out.push_back(long(v));
-  }
+  for (std::size_t i = 0; i < n.size(); ++i)
+    out.push_back(asInteger(n[i], file_, fmt::format("{}[{}]", childPath(key), i), range));
   return out;
 }
 std::array<double, 3> YamlMap::vec3(const std::string& key) const {
@@ -182,7 +389,9 @@ YamlMap YamlMap::map(const std::string& key) const {
 
 void YamlMap::finish(const std::vector<std::string>& validKeys) const {
   for (const auto& kv : node_) {
-    const std::string k = kv.first.as<std::string>();
+    if (!kv.first.IsScalar())
+      throw InputError(locate(file_, kv.first, path_) + ": a key must be a plain name");
+    const std::string k = kv.first.Scalar();
     if (used_.count(k)) continue;
     const bool known = std::find(validKeys.begin(), validKeys.end(), k) != validKeys.end();
     const std::string near = closestMatch(k, validKeys);
@@ -194,11 +403,45 @@ void YamlMap::finish(const std::vector<std::string>& validKeys) const {
 }
 
 namespace {
-std::size_t listIndex(const std::string& part, const std::string& assignment) {
-  if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos)
-    throw InputError(fmt::format("--set '{}': '{}' must be a list index (0, 1, ...)", assignment, part));
-  return std::stoul(part);
+
+std::string shown(const std::string& walked) {
+  return walked.empty() ? std::string("(top level)") : walked;
 }
+
+std::size_t listIndex(const std::string& part, std::size_t size, const std::string& walked,
+                      const std::string& assignment) {
+  if (part.find_first_not_of("0123456789") != std::string::npos)
+    throw InputError(fmt::format("--set '{}': '{}' is a list, so '{}' must be an index (0, 1, ...)",
+                                 assignment, shown(walked), part));
+  std::size_t idx = 0;
+  bool tooLarge = false;
+  for (const char c : part) {
+    if (idx > (std::numeric_limits<std::size_t>::max() - 9) / 10) {
+      tooLarge = true;
+      break;
+    }
+    idx = 10 * idx + std::size_t(c - '0');
+  }
+  if (tooLarge || idx >= size)
+    throw InputError(fmt::format("--set '{}': index {} is out of range; {}", assignment, part,
+                                 size == 0
+                                     ? fmt::format("'{}' is an empty list", shown(walked))
+                                     : fmt::format("'{}' has indices 0 to {}", shown(walked), size - 1)));
+  return idx;
+}
+
+// One step along a --set path: a list by index, a mapping (or an absent or empty value, which becomes one)
+// by key. A scalar has no keys: yaml-cpp would throw a bare exception there, and it would silently turn a
+// list into a mapping, so both are checked first.
+YAML::Node child(YAML::Node cur, const std::string& part, const std::string& walked,
+                 const std::string& assignment) {
+  if (cur.IsSequence()) return cur[listIndex(part, cur.size(), walked, assignment)];
+  if (cur.IsScalar())
+    throw InputError(fmt::format("--set '{}': '{}' is a value ('{}'), not a mapping, so it has no key '{}'",
+                                 assignment, shown(walked), cur.Scalar(), part));
+  return cur[part];
+}
+
 }  // namespace
 
 void applyOverride(YAML::Node& root, const std::string& assignment) {
@@ -208,41 +451,29 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
   const std::string path = assignment.substr(0, eq);
   YAML::Node value;
   try {
-    value = YAML::Load(assignment.substr(eq + 1));
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("--set '{}': value is not valid YAML: {}", assignment, e.what()));
+    value = parseDocument(assignment.substr(eq + 1), "value");
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--set '{}': the value is not valid YAML: {}", assignment, e.what()));
   }
   std::vector<std::string> parts;
   std::size_t start = 0;
   while (true) {
     const auto dot = path.find('.', start);
     parts.push_back(path.substr(start, dot - start));
+    if (parts.back().empty())
+      throw InputError(fmt::format("--set '{}': empty key in '{}' (a dot at the start or end, or two dots)",
+                                   assignment, path));
     if (dot == std::string::npos) break;
     start = dot + 1;
   }
-  // yaml-cpp nodes are handles: walk with copies that reference the same tree.
+  // yaml-cpp nodes are handles, and assigning one node to another changes the tree: walk with copies.
   std::vector<YAML::Node> chain{root};
+  std::string walked;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    YAML::Node cur = chain.back();
-    const std::string& p = parts[i];
-    if (cur.IsSequence()) {
-      const std::size_t idx = listIndex(p, assignment);
-      if (idx >= cur.size())
-        throw InputError(
-            fmt::format("--set '{}': index {} out of range (list has {} entries)", path, idx, cur.size()));
-      chain.push_back(cur[idx]);
-    } else {
-      chain.push_back(cur[p]);
-    }
+    chain.push_back(child(chain.back(), parts[i], walked, assignment));
+    walked += (walked.empty() ? "" : ".") + parts[i];
   }
-  YAML::Node last = chain.back();
-  if (last.IsSequence()) {
-    const std::size_t idx = listIndex(parts.back(), assignment);
-    if (idx >= last.size()) throw InputError(fmt::format("--set '{}': index out of range", path));
-    last[idx] = value;
-  } else {
-    last[parts.back()] = value;
-  }
+  child(chain.back(), parts.back(), walked, assignment) = value;
 }
 
 }  // namespace fsi::structure

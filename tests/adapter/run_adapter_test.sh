@@ -11,9 +11,20 @@
 #                     diagnosis (not OpenFOAM's floating-point trap) and keeps its last stable state
 #   coupled         : staggered coupled run: the bottom rises, fluid and structure interface forces agree
 #                     (< 1e-6 relative, every window), results and restart state are written
-#   checkpoint      : implicit coupling with every pass repeated from its checkpoint: the repeat is exact
+#   checkpoint      : implicit coupling with every pass repeated from its checkpoint: the repeat is exact;
+#                     the last window (not a write time) is written, fields and structure state
 #   parallel        : the coupled run on 2 MPI ranks (cut across the interface) equals the serial one
-#   restart         : stop at t = 0.25, restart from that time directory, compare with the continuous run
+#   restart         : stop at t = 0.25, restart from that time directory, compare with the continuous run;
+#                     one results series / coupling.csv / timing.json continued across the restart (t = 0
+#                     frame, times = the fluid's time names, "# restart at t = 0.25", totals = sum of
+#                     segments), then a restart from the earlier time 0.25 drops the stale later output
+#   bad-option      : each misspelt option of the issue stops the run at start-up naming the nearest key
+#   bad-value       : each out-of-range value stops the run at start-up naming the key and the valid range;
+#                     OpenFOAM's time-control keys (timeStart, executeInterval, writeControl, ...) are refused:
+#                     the coupling would skip steps or run twice after a repeated implicit step
+#   progress        : `[fsi] ` progress lines: ceil(windows / N) for `progress N` with parsable fields, the
+#                     default (about 40 per run, every window of a short run), none for `progress 0`;
+#                     OpenFOAM's generic keys are accepted, an option without effect is a warning
 #   subcycles       : 1 vs 10 structural steps per fluid step differ less than the coupled time-step error
 #   convergence     : halving the fluid step: successive differences of the answer shrink (order > 0.7)
 # Usage: run_adapter_test.sh MODE ADAPTER_LIB WORK_DIR
@@ -50,19 +61,31 @@ solve() {
   fi
   rc=$?
 }
-# last DIR COLUMN: value of COLUMN in the last row of structure/coupling*.csv (newest file)
-last() { python3 - "$1" "$2" <<'PY'
-import csv, glob, os, sys
-files = sorted(glob.glob(os.path.join(sys.argv[1], "structure", "coupling*.csv")), key=os.path.getmtime)
-rows = list(csv.DictReader(open(files[-1])))
+# last DIR COLUMN: value of COLUMN in the last row of structure/coupling.csv (lines starting with '#' are
+# comments: restart marks)
+last() { /usr/bin/python3 - "$1" "$2" <<'PY'
+import csv, os, sys
+lines = [l for l in open(os.path.join(sys.argv[1], "structure", "coupling.csv")) if not l.startswith("#")]
+rows = list(csv.DictReader(lines))
 print(rows[-1][sys.argv[2]])
 PY
 }
+# refused DIR TEXT EXPECTED...: with TEXT added to the fsiCoupling entry, pimpleFoam stops at start-up
+# (non-zero exit, before the first step) with a message containing every EXPECTED, and no uncaught exception
+refused() {
+  local dir=$1 text=$2; shift 2
+  rm -rf "$dir"; prepare "$dir"; fsi_option "$dir" "$text"; solve "$dir"
+  [ $rc -ne 0 ] || fail "'$text' did not stop the run"
+  for e in "$@"; do grep -qF -- "$e" "$log" || fail "'$text': the message lacks: $e"; done
+  ! grep -q "terminate called\|uncaught\|what():" "$log" || fail "'$text' ended in an uncaught exception"
+  ! grep -q "^Time = " "$log" || fail "'$text' was not refused at start-up"
+  echo "refused '$text': $(grep -m1 "fsiCoupling: " "$log" | cut -c1-150)"
+}
 check_conservation() {
-  python3 "$here/../../cases/coupled/summarize.py" --force-check "$1" || fail "fluid and structure interface forces differ"
+  /usr/bin/python3 "$here/../../cases/coupled/summarize.py" --force-check "$1" || fail "fluid and structure interface forces differ"
 }
 # close A B TOL: |A - B| <= TOL * max(|A|, |B|)
-close() { python3 -c "import sys; a, b, t = map(float, sys.argv[1:]); print(f'{a:.9g} vs {b:.9g}: relative difference {abs(a-b)/max(abs(a),abs(b)):.2e} (limit {t:g})'); sys.exit(0 if abs(a-b) <= t*max(abs(a),abs(b)) else 1)" "$@"; }
+close() { /usr/bin/python3 -c "import sys; a, b, t = map(float, sys.argv[1:]); print(f'{a:.9g} vs {b:.9g}: relative difference {abs(a-b)/max(abs(a),abs(b)):.2e} (limit {t:g})'); sys.exit(0 if abs(a-b) <= t*max(abs(a),abs(b)) else 1)" "$@"; }
 
 case "$mode" in
   forces|forces-viscous|wrong-patch|bad-scene)
@@ -85,7 +108,7 @@ case "$mode" in
           theirs=$(awk '/Sum of forces/{s=1} s&&/Viscous *:/{v=$0; s=0} END{print v}' "$log" | sed 's/.*(\(.*\))/\1/')
         fi
         echo "fsiCoupling: ($ours)  forces: ($theirs)"
-        python3 - "$ours" "$theirs" <<'PY' || fail "forces differ"
+        /usr/bin/python3 - "$ours" "$theirs" <<'PY' || fail "forces differ"
 import sys
 a = [float(v) for v in sys.argv[1].split()]
 b = [float(v) for v in sys.argv[2].split()]
@@ -143,7 +166,7 @@ PY
     [ $rc -eq 0 ] || fail "pimpleFoam exited with $rc"
     check_conservation "$work/case"
     z=$(last "$work/case" mid_z)
-    python3 -c "import sys; z = float(sys.argv[1]); print(f'mid-point rise {z:.4g} m'); sys.exit(0 if 1e-3 < z < 0.1 else 1)" "$z" \
+    /usr/bin/python3 -c "import sys; z = float(sys.argv[1]); print(f'mid-point rise {z:.4g} m'); sys.exit(0 if 1e-3 < z < 0.1 else 1)" "$z" \
       || fail "the bottom did not rise as expected"
     for f in structure/results.h5 structure/results.xdmf structure/timing.json 0.25/uniform/fsiStructure.h5 0.5/uniform/fsiStructure.h5; do
       [ -s "$work/case/$f" ] || fail "missing output $f"
@@ -155,7 +178,10 @@ PY
     set_entry "$work/case" endTime 0.1
     solve "$work/case"
     [ $rc -eq 0 ] || fail "pimpleFoam exited with $rc"
-    python3 - "$log" <<'PY' || fail "a repeated pass differs from the first"
+    # 0.1 is not a write time (every 0.25 s): the implicit scheme's end still writes the fields there
+    [ -f "$work/case/0.1/U" ] && [ -f "$work/case/0.1/uniform/fsiStructure.h5" ] \
+      || fail "the fields of the last window (t = 0.1, not a write time) were not written"
+    /usr/bin/python3 - "$log" <<'PY' || fail "a repeated pass differs from the first"
 import re, sys
 lines = [l for l in open(sys.argv[1]) if "repeated window" in l]
 worst = max((float(v) for l in lines for v in re.findall(r"\| ([-0-9.e+]+)", l)), default=None)
@@ -188,19 +214,88 @@ PY
     solve "$work/restarted"
     [ $rc -eq 0 ] || fail "restarted run exited with $rc"
     grep -q "structure restarted from" "$log" || fail "the structure did not restart from its state"
+    grep -q "^\[fsi\] restart at t = 0.25" "$log" || fail "no restart line"
     close "$(last "$work/continuous" mid_z)" "$(last "$work/restarted" mid_z)" 1e-7 || fail "restart changed the answer"
+    # One continuous series: checked against the fluid's time directories and the uninterrupted run.
+    check_series() {
+      /usr/bin/python3 - "$@" <<'PY'
+import csv, glob, json, os, sys
+import h5py
+case, reference, end, restarts, segments = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4], int(sys.argv[5])
+restarts = [float(r) for r in restarts.split()]
+s = os.path.join(case, "structure")
+extra = sorted(f for f in os.listdir(s) if f not in ("results.h5", "results.xdmf", "coupling.csv", "timing.json"))
+assert not extra, f"more than one series: {extra}"
+def frames(path):
+    with h5py.File(path, "r") as f:
+        times = [float(f["steps"][g].attrs["time"]) for g in sorted(f["steps"])]
+        tables = {t: {c: list(f["tables"][t][c][()]) for c in f["tables"][t]} for t in f["tables"]}
+        return times, tables, [float(v) for v in f.attrs.get("restart_times", [])]
+def number(name):
+    try:
+        return float(name)
+    except ValueError:
+        return None
+times, tables, marks = frames(os.path.join(s, "results.h5"))
+print("frames at", times, "restart_times", marks)
+assert times == sorted(set(times)), "frame times not strictly increasing and unique"
+assert times[0] == 0.0, "no t = 0 frame"
+assert max(times) <= end, f"a frame later than the end {end}: a stale future"
+fluid = sorted(number(d) for d in os.listdir(case)
+               if number(d) is not None and os.path.isfile(os.path.join(case, d, "U")) and number(d) <= end)
+assert times == fluid, f"frame times {times} are not the fluid's time names {fluid}"
+assert marks == restarts, f"restart_times {marks}, expected {restarts}"
+# The tables: one row per window and t = 0, at the same times as in the uninterrupted run.
+ref_times, ref_tables, _ = frames(os.path.join(reference, "structure", "results.h5"))
+for name in ("energy", "probes"):
+    t = tables[name]["time"]
+    ref = [x for x in ref_tables[name]["time"] if x <= end + 1e-12]
+    assert t == ref, f"/tables/{name} times {t[:3]}...{t[-3:]} differ from the uninterrupted run's"
+    assert t == sorted(set(t)) and t[0] == 0.0, f"/tables/{name} times not increasing from 0"
+mid, ref_mid = tables["probes"]["mid_z"], ref_tables["probes"]["mid_z"][:len(tables["probes"]["mid_z"])]
+assert max(abs(a - b) for a, b in zip(mid, ref_mid)) <= 1e-7 * max(abs(v) for v in ref_mid), "probe history differs"
+# coupling.csv: header, rows of consecutive windows, one mark per restart.
+lines = open(os.path.join(s, "coupling.csv")).read().splitlines()
+marks = [l for l in lines if l.startswith("#")]
+assert marks == [f"# restart at t = {r:g}" for r in restarts], f"marks {marks}"
+rows = list(csv.DictReader([l for l in lines if not l.startswith("#")]))
+t = [float(r["time"]) for r in rows]
+n = round(end / 0.01)
+assert len(t) == n and all(abs(b - a - 0.01) < 1e-9 for a, b in zip(t, t[1:])) and abs(t[-1] - end) < 1e-9, \
+    f"coupling.csv times not the {n} consecutive windows: {t[:3]}...{t[-3:]}"
+assert all(r["time"] in {f"{0.01 * k:g}" for k in range(1, n + 1)} for r in rows), "csv times are not the time names"
+# timing.json: totals are the sums over the segments.
+j = json.load(open(os.path.join(s, "timing.json")))
+seg = j["segments"]
+assert len(seg) == segments, f"{len(seg)} segments, expected {segments}"
+for k in ("windows", "fluid_solves", "iterations", "structural_steps", "wall_seconds", "structure_seconds"):
+    assert abs(j[k] - sum(x[k] for x in seg)) <= 1e-9 * max(1, abs(j[k])), f"timing.json {k} {j[k]} is not the sum"
+assert j["windows"] == n, f"timing.json windows {j['windows']}, expected {n}"
+assert j["restart_times"] == restarts, f"timing.json restart_times {j['restart_times']}"
+print(f"one series: {len(times)} frames, {len(rows)} csv rows, {len(seg)} segments, {j['windows']} windows")
+PY
+    }
+    check_series "$work/restarted" "$work/continuous" 0.5 "0.25" 2 || fail "the restarted output is not one continuous series"
+    # A restart from the earlier time 0.25 (the run went to 0.5): its later frames and rows are dropped.
+    set_entry "$work/restarted" startFrom startTime
+    set_entry "$work/restarted" startTime 0.25
+    set_entry "$work/restarted" endTime 0.4
+    set_entry "$work/restarted" writeInterval 5
+    solve "$work/restarted"
+    [ $rc -eq 0 ] || fail "restart from an earlier time exited with $rc"
+    check_series "$work/restarted" "$work/continuous" 0.4 "0.25" 2 || fail "a restart from an earlier time left stale output"
     ;;
   subcycles)
     # Subcycling must be consistent: its effect is of the order of the coupled time-step error and
     # vanishes with the step like it (it must not leave a step-independent offset).
     for k in 1 2; do for n in 1 10; do
-      d=$(python3 -c "print(0.01/$k)"); w=$((25 * k))
+      d=$(/usr/bin/python3 -c "print(0.01/$k)"); w=$((25 * k))
       prepare "$work/dt$k-sub$n"; fsi_option "$work/dt$k-sub$n" "subcycles $n;"
       set_entry "$work/dt$k-sub$n" deltaT "$d"; set_entry "$work/dt$k-sub$n" writeInterval "$w"; solve "$work/dt$k-sub$n"
       [ $rc -eq 0 ] || fail "deltaT $d, subcycles $n exited with $rc"
     done; done
     grep -q " 10 structural steps per window" "$work/dt1-sub10/log.pimpleFoam" || fail "subcycling was not applied"
-    python3 - "$(last "$work/dt1-sub1" mid_z)" "$(last "$work/dt1-sub10" mid_z)" "$(last "$work/dt2-sub1" mid_z)" \
+    /usr/bin/python3 - "$(last "$work/dt1-sub1" mid_z)" "$(last "$work/dt1-sub10" mid_z)" "$(last "$work/dt2-sub1" mid_z)" \
       "$(last "$work/dt2-sub10" mid_z)" <<'PY' || fail "subcycling changes the answer beyond the time-discretisation error"
 import sys
 a1, a10, b1, b10 = map(float, sys.argv[1:])
@@ -213,18 +308,88 @@ PY
   convergence)
     values=()
     for k in 1 2 4; do
-      d=$(python3 -c "print(0.02/$k)"); w=$((25 * k / 2))
+      d=$(/usr/bin/python3 -c "print(0.02/$k)"); w=$((25 * k / 2))
       prepare "$work/dt$k"; set_entry "$work/dt$k" deltaT "$d"; set_entry "$work/dt$k" writeInterval "$w"; solve "$work/dt$k"
       [ $rc -eq 0 ] || fail "deltaT $d exited with $rc"
       values+=("$(last "$work/dt$k" mid_z)")
     done
-    python3 - "${values[@]}" <<'PY' || fail "the coupled answer does not converge with the step"
+    /usr/bin/python3 - "${values[@]}" <<'PY' || fail "the coupled answer does not converge with the step"
 import math, sys
 z1, z2, z4 = map(float, sys.argv[1:])
 e1, e2 = abs(z1 - z2), abs(z2 - z4)
 order = math.log2(e1 / e2) if e2 > 0 else float("inf")
 print(f"mid-point rise at t = 0.5 s: dt 0.02 {z1:.9g}, 0.01 {z2:.9g}, 0.005 {z4:.9g}; observed order {order:.2f}")
 sys.exit(0 if order > 0.7 else 1)
+PY
+    ;;
+  bad-option)
+    # The misspellings of issue 10, each silently ignored before.
+    for typo in "shceme implicit:scheme" "accleration aitken:acceleration" "omgea 0.3:omega" "tolerence 1e-3:tolerance" \
+                "maxIteration 10:maxIterations" "viscos yes:viscous" "subcycle 2:subcycles" "projecton lumped:projection" \
+                "maptolerance 0.1:mapTolerance" "restoreMeshPoint no:restoreMeshPoints" "progres 5:progress"; do
+      key=${typo%% *} near=${typo##*:} text="${typo%:*};"
+      refused "$work/case" "$text" "unknown option '$key'; did you mean '$near'?" "Valid options: patches rho" \
+        "line " "controlDict"
+    done
+    ;;
+  bad-value)
+    refused "$work/case" "scheme implicit; omega -1;" "option 'omega' = -1 is out of range; valid: 0 < omega <= 1"
+    refused "$work/case" "scheme implicit; omega 50;" "option 'omega' = 50 is out of range; valid: 0 < omega <= 1"
+    refused "$work/case" "scheme implicit; reuse -3;" "option 'reuse' = -3 is out of range; valid: integer, reuse >= 0"
+    refused "$work/case" "scheme implicit; maxIterations 0;" "option 'maxIterations' = 0 is out of range; valid: integer, maxIterations >= 1"
+    refused "$work/case" "scheme implicit; tolerance 0;" "option 'tolerance' = 0 is out of range; valid: 0 < tolerance < 1"
+    refused "$work/case" "extrapolation 7;" "option 'extrapolation' = 7 is out of range; valid: integer, 0 <= extrapolation <= 2"
+    refused "$work/case" "subcycles 0;" "option 'subcycles' = 0 is out of range; valid: integer, subcycles >= 1"
+    refused "$work/case" "scheme implicite;" "option 'scheme' = implicite is not a valid choice (did you mean 'implicit'?)"
+    refused "$work/case" "maxIterations 2.5; scheme implicit;" "option 'maxIterations' = 2.5 is not an integer"
+    # OpenFOAM's time-control keys: the coupling would skip steps or (implicit) run twice after a restore
+    for key in "timeStart 0.1" "executeInterval 2" "writeControl timeStep"; do
+      refused "$work/case" "scheme implicit; $key;" "option '${key%% *}' cannot be used here: OpenFOAM would run the coupling under a time control"
+    done
+    ;;
+  progress)
+    # progress 7 on 50 implicit windows: windows 7, 14, ..., 49 and the last one; OpenFOAM's own keys pass;
+    # viscous is checked, omega without the implicit scheme would be a warning (here it applies).
+    prepare "$work/every7"
+    fsi_option "$work/every7" "scheme implicit; progress 7; log yes; enabled yes; region region0;"
+    solve "$work/every7"
+    [ $rc -eq 0 ] || fail "progress 7 exited with $rc"
+    prepare "$work/default"
+    fsi_option "$work/default" "omega 0.3;"
+    solve "$work/default"
+    [ $rc -eq 0 ] || fail "the default progress run exited with $rc"
+    grep -qx "\[fsi\] warning: option 'omega' has no effect with scheme staggered (it needs scheme implicit)" "$log" \
+      || fail "no warning for an option without effect"
+    prepare "$work/off"
+    fsi_option "$work/off" "progress 0;"
+    solve "$work/off"
+    [ $rc -eq 0 ] || fail "progress 0 exited with $rc"
+    /usr/bin/python3 - "$work" <<'PY' || fail "progress lines"
+import math, os, re, sys
+pat = re.compile(r"^\[fsi\] t (\S+)/(\S+) s \((\S+)%\)  window (\d+)/(\d+)  iter (\d+) \(mean (\S+)\)  res (\S+)  "
+                 r"F \((\S+) (\S+) (\S+)\) N  wall (\d+):(\d\d):(\d\d)  ETA (\d+):(\d\d):(\d\d)$")
+def check(name, expected_windows, implicit):
+    lines = open(os.path.join(sys.argv[1], name, "log.pimpleFoam")).read().splitlines()
+    fsi = [l for l in lines if l.startswith("[fsi]")]
+    assert fsi and all(len(l) < 160 for l in fsi), f"{name}: an [fsi] line of 160 characters or more"
+    assert not [l for l in lines if "[fsi]" in l and not l.startswith("[fsi] ")], f"{name}: [fsi] not at a line start"
+    prog = [l for l in fsi if l.startswith("[fsi] t ") and " window " in l]
+    windows = []
+    for l in prog:
+        m = pat.match(l)
+        assert m, f"{name}: unparsable progress line: {l}"
+        t, end, pct, w, total, it, mean, res = m.group(1, 2, 3, 4, 5, 6, 7, 8)
+        F = [float(v) for v in m.group(9, 10, 11)]
+        assert abs(float(pct) - 100 * float(t) / float(end)) < 0.051 and int(total) == 50
+        assert abs(float(t) - 0.01 * int(w)) < 1e-9 and int(it) >= 1 and float(mean) >= 1
+        assert (float(res) < 1e-5) if implicit else res == "-", f"{name}: residual {res}"
+        assert all(math.isfinite(v) for v in F) and abs(F[2]) > 0
+        windows.append(int(w))
+    assert windows == expected_windows, f"{name}: progress after windows {windows}, expected {expected_windows}"
+    print(f"{name}: {len(prog)} progress lines, e.g.\n  {prog[-1] if prog else '(none)'}")
+check("every7", list(range(7, 50, 7)) + [50], True)
+check("default", list(range(2, 51, 2)), False)
+check("off", [], False)
 PY
     ;;
   *) fail "unknown mode $mode" ;;

@@ -2,7 +2,6 @@
 // L2 projections (linear reproduction, second-order convergence, conservation of force and moment by the
 // transpose, mesh-size ratios, curved surfaces with gaps) and the interface readers (OpenFOAM, Gmsh).
 
-#include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -673,21 +672,8 @@ TEST_F(InterfaceIOTest, ClearErrors) {
 }
 
 TEST_F(InterfaceIOTest, ReadsGmshPhysicalGroup) {
-  const fs::path file = dir_ / "two.msh";
-  {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::model::add("two");
-    const int a = gmsh::model::occ::addRectangle(0, 0, 0, 1, 1);
-    const int b = gmsh::model::occ::addRectangle(2, 0, 0, 1, 1);
-    gmsh::model::occ::synchronize();
-    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, {a}), "canopy");
-    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, {b}), "other");
-    gmsh::option::setNumber("Mesh.MeshSizeMax", 0.25);
-    gmsh::model::mesh::generate(2);
-    gmsh::write(file.string());
-    gmsh::finalize();
-  }
+  // Two unit squares, x in [0,1] ("canopy") and x in [2,3] ("other"), written by Gmsh (tests/data/gmsh).
+  const fs::path file = fs::path(FSI_SOURCE_DIR) / "tests" / "data" / "gmsh" / "two_surfaces_41.msh";
   const InterfaceMesh all = readInterface(file.string());
   const InterfaceMesh canopy = readInterface(file.string() + ":canopy");
   EXPECT_GT(canopy.numFaces(), 8);

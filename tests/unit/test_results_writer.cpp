@@ -5,9 +5,11 @@
 #include <unistd.h>
 
 #include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -412,6 +414,119 @@ TEST(ResultsWriter, IoFailureNamesTheFile) {
     FAIL() << "expected std::runtime_error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(blocked.string()), std::string::npos) << e.what();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Append mode: a restarted run continues one series.
+
+std::vector<double> stepTimes(const fs::path& h5) {
+  const H5Handle file{H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  std::vector<double> times;
+  for (int k = 0; k < 100; ++k) {
+    char g[32];
+    std::snprintf(g, sizeof g, "/steps/%06d", k);
+    if (pathExists(file.id, g)) times.push_back(readAttribute<double>(file.id, g, "time", H5T_NATIVE_DOUBLE));
+  }
+  return times;
+}
+
+std::vector<double> xdmfTimes(const fs::path& xdmf) {
+  static const std::regex grid(
+      R"re(<Grid Name="step_\d+" GridType="Collection" CollectionType="Spatial">\s*<Time Value="([^"]+)"/>)re");
+  const std::string text = readText(xdmf);
+  std::vector<double> times;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), grid); it != std::sregex_iterator(); ++it)
+    times.push_back(std::stod((*it)[1].str()));
+  return times;
+}
+
+TEST(ResultsWriterAppend, ContinuesTheSeriesAndDropsLaterSteps) {
+  const ScratchDir dir;
+  const fs::path h5 = dir.path() / "results.h5";
+  const std::size_t objectsBefore = openHdf5Objects();
+  {
+    ResultsWriter w(h5, kNodes, kTriangles, kLines);
+    for (int k = 0; k < 5; ++k) {  // times 0.125 k + 1e-9
+      const StepData s(k);
+      w.writeStep(s.time, s.step, s.coords.data(), s.fields());
+    }
+    w.writeTable("energy", {"time", "kinetic"}, {{0.0, 0.25, 0.5}, {1.0, 2.0, 3.0}});
+    w.writeRootAttribute("restart_times", {0.25});
+  }
+  {
+    // Restart at t = 0.25 (step 2): steps 3 and 4 are a stale future.
+    ResultsWriter w = ResultsWriter::append(h5, kNodes, kTriangles, kLines, 0.3);
+    EXPECT_EQ(w.stepsWritten(), 3);
+    EXPECT_DOUBLE_EQ(w.lastStepTime(), StepData(2).time);
+    EXPECT_EQ(xdmfTimes(dir.path() / "results.xdmf").size(), 3u) << "the index is rewritten at once";
+    const auto [columns, data] = w.readTable("energy");
+    EXPECT_EQ(columns, (std::vector<std::string>{"time", "kinetic"}));  // table order, not name order
+    EXPECT_EQ(data[1], (std::vector<double>{1.0, 2.0, 3.0}));
+    EXPECT_TRUE(w.readTable("missing").first.empty());
+    EXPECT_EQ(w.rootAttribute("restart_times"), (std::vector<double>{0.25}));
+    EXPECT_TRUE(w.rootAttribute("none").empty());
+    for (const double t : {0.3125, 0.4375}) {
+      const StepData s(7);
+      w.writeStep(t, 99, s.coords.data(), s.fields());
+    }
+    EXPECT_EQ(w.stepsWritten(), 5);
+  }
+  EXPECT_EQ(openHdf5Objects(), objectsBefore) << "HDF5 identifiers leaked";
+  const std::vector<double> expected{StepData(0).time, StepData(1).time, StepData(2).time, 0.3125, 0.4375};
+  EXPECT_EQ(stepTimes(h5), expected);
+  EXPECT_EQ(xdmfTimes(dir.path() / "results.xdmf"), expected);
+  // The kept steps are untouched; the new ones hold what was written; the index resolves everywhere.
+  const H5Handle file{H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  EXPECT_EQ(readDataset(file.id, "/steps/000001/velocity").doubles, StepData(1).velocity);
+  EXPECT_EQ(readDataset(file.id, "/steps/000003/coordinates").doubles, StepData(7).coords);
+  EXPECT_EQ(readAttribute<long long>(file.id, "/steps/000004", "step", H5T_NATIVE_LLONG), 99);
+  expectReferencesResolve(h5, readText(dir.path() / "results.xdmf"), 5 * kItemsPerStep);
+}
+
+TEST(ResultsWriterAppend, RestartFromAnEarlierTimeAndAMissingFile) {
+  const ScratchDir dir;
+  const fs::path h5 = dir.path() / "results.h5";
+  {
+    // A missing file is started as by the constructor.
+    ResultsWriter w = ResultsWriter::append(h5, kNodes, kTriangles, kLines, 1.0);
+    EXPECT_EQ(w.stepsWritten(), 0);
+    EXPECT_EQ(w.lastStepTime(), -std::numeric_limits<double>::infinity());
+    for (int k = 0; k < 4; ++k) {
+      const StepData s(k);
+      w.writeStep(s.time, s.step, s.coords.data(), s.fields());
+    }
+  }
+  // First a restart at step 2, which writes on; then one from step 0: only step 0 is left before it.
+  {
+    ResultsWriter w = ResultsWriter::append(h5, kNodes, kTriangles, kLines, StepData(2).time);
+    const StepData s(5);
+    w.writeStep(0.3, s.step, s.coords.data(), s.fields());
+  }
+  {
+    ResultsWriter w = ResultsWriter::append(h5, kNodes, kTriangles, kLines, StepData(0).time);
+    const StepData s(6);
+    w.writeStep(0.1, s.step, s.coords.data(), s.fields());
+  }
+  EXPECT_EQ(stepTimes(h5), (std::vector<double>{StepData(0).time, 0.1}));
+  EXPECT_EQ(xdmfTimes(dir.path() / "results.xdmf"), (std::vector<double>{StepData(0).time, 0.1}));
+}
+
+TEST(ResultsWriterAppend, AnotherMeshIsRefusedNamingTheFile) {
+  const ScratchDir dir;
+  const fs::path h5 = dir.path() / "results.h5";
+  { ResultsWriter w(h5, kNodes, kTriangles, kLines); }
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    try {
+      if (attempt == 0)
+        ResultsWriter::append(h5, kNodes + 1, kTriangles, kLines, 1.0);
+      else
+        ResultsWriter::append(h5, kNodes, {{0, 1, 2}, {0, 3, 2}}, kLines, 1.0);
+      FAIL() << "expected std::runtime_error";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(h5.string()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("another mesh"), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -1,0 +1,518 @@
+#include "coupling/scheme/CouplingOptions.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "structure/scene/NearestName.hpp"
+
+namespace fsi::coupling {
+namespace {
+
+std::string number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+std::string join(const std::vector<std::string>& words, const std::string& sep) {
+  std::string out;
+  for (std::size_t i = 0; i < words.size(); ++i) out += (i ? sep : "") + words[i];
+  return out;
+}
+
+// The tokens as the user wrote them, near enough: "(a b)" rather than "( a b )".
+std::string display(const std::vector<std::string>& tokens) {
+  std::string out;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const bool glue = i == 0 || tokens[i - 1] == "(" || tokens[i] == ")";
+    out += (glue ? "" : " ") + tokens[i];
+  }
+  return out;
+}
+
+const std::vector<std::string>& switchWords(bool value) {
+  // OpenFOAM's Switch words, so that every value OpenFOAM would read still reads.
+  static const std::vector<std::string> yes{"yes", "on", "true", "y", "t", "any"};
+  static const std::vector<std::string> no{"no", "off", "false", "n", "f", "none"};
+  return value ? yes : no;
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+[[noreturn]] void fail(const OptionSpec& spec, const std::vector<std::string>& tokens,
+                       const std::string& what) {
+  std::string msg = "option '" + spec.key + "' = " + (tokens.empty() ? "(nothing)" : display(tokens)) + " " +
+                    what + "; valid: " + spec.rangeText();
+  if (!spec.description.empty()) msg += " (" + spec.description + ")";
+  throw OptionError(spec.key, msg);
+}
+
+bool inRange(const OptionSpec& s, double v) {
+  if (s.lower && (s.lower->inclusive ? v < s.lower->value : v <= s.lower->value)) return false;
+  if (s.upper && (s.upper->inclusive ? v > s.upper->value : v >= s.upper->value)) return false;
+  return true;
+}
+
+OptionValues::Value parse(const OptionSpec& spec, const std::vector<std::string>& tokens) {
+  OptionValues::Value v;
+  v.type = spec.type;
+  if (spec.type == OptionType::Any) {
+    v.words = tokens;
+    return v;
+  }
+  if (tokens.empty()) fail(spec, tokens, "has no value");
+  if (spec.type == OptionType::WordList) {
+    // A single word, or [count] ( words ).
+    std::size_t i = 0;
+    long count = -1;
+    if (tokens.size() > 1 && std::isdigit(static_cast<unsigned char>(tokens[0][0])))
+      count = std::atol(tokens[i++].c_str());
+    if (tokens.size() == 1 && tokens[0] != "(" && tokens[0] != ")") {
+      v.words = tokens;
+      return v;
+    }
+    if (tokens[i] != "(" || tokens.back() != ")") fail(spec, tokens, "is not a list of words");
+    for (++i; i + 1 < tokens.size(); ++i) {
+      if (tokens[i] == "(" || tokens[i] == ")") fail(spec, tokens, "is not a flat list of words");
+      v.words.push_back(tokens[i]);
+    }
+    if (v.words.empty()) fail(spec, tokens, "is an empty list");
+    if (count >= 0 && count != long(v.words.size()))
+      fail(spec, tokens, "has a count that does not match its list");
+    return v;
+  }
+  if (tokens.size() != 1) fail(spec, tokens, "is not a single value");
+  const std::string& t = tokens[0];
+  switch (spec.type) {
+    case OptionType::Switch:
+      if (contains(switchWords(true), t))
+        v.flag = true;
+      else if (contains(switchWords(false), t))
+        v.flag = false;
+      else
+        fail(spec, tokens, "is not a switch");
+      return v;
+    case OptionType::Integer:
+    case OptionType::Real: {
+      const bool integer = spec.type == OptionType::Integer;
+      char* end = nullptr;
+      errno = 0;
+      double x = 0;
+      if (integer) {
+        const long n = std::strtol(t.c_str(), &end, 10);
+        x = double(n);
+      } else {
+        x = std::strtod(t.c_str(), &end);
+      }
+      if (end == t.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
+        fail(spec, tokens, integer ? "is not an integer" : "is not a number");
+      if (!inRange(spec, x)) fail(spec, tokens, "is out of range");
+      v.number = x;
+      return v;
+    }
+    case OptionType::Choice:
+      if (!contains(spec.choices, t)) {
+        std::string what = "is not a valid choice";
+        const std::string near = fsi::nearestName(t, spec.choices);
+        if (!near.empty()) what += " (did you mean '" + near + "'?)";
+        fail(spec, tokens, what);
+      }
+      v.words = tokens;
+      return v;
+    case OptionType::Text:
+      v.words = tokens;
+      return v;
+    default:
+      return v;
+  }
+}
+
+bool holds(const OptionCondition& c, const std::string& value, bool given) {
+  return c.values.empty() ? given : contains(c.values, value);
+}
+
+}  // namespace
+
+const char* toString(OptionType t) {
+  switch (t) {
+    case OptionType::Switch:
+      return "switch";
+    case OptionType::Integer:
+      return "integer";
+    case OptionType::Real:
+      return "real";
+    case OptionType::Choice:
+      return "word";
+    case OptionType::Text:
+      return "file name";
+    case OptionType::WordList:
+      return "word list";
+    case OptionType::Any:
+      return "any";
+  }
+  return "?";
+}
+
+std::string OptionSpec::rangeText() const {
+  switch (type) {
+    case OptionType::Switch:
+      return "yes or no (on/off, true/false)";
+    case OptionType::Choice:
+      return "one of " + join(choices, " ");
+    case OptionType::Text:
+      return "one word or quoted string";
+    case OptionType::WordList:
+      return "a list of words, e.g. (a b)";
+    case OptionType::Any:
+      return "anything";
+    case OptionType::Integer:
+    case OptionType::Real: {
+      const std::string kind = type == OptionType::Integer ? "integer" : "number";
+      if (lower && upper)
+        return (type == OptionType::Integer ? "integer, " : "") + number(lower->value) +
+               (lower->inclusive ? " <= " : " < ") + key + (upper->inclusive ? " <= " : " < ") +
+               number(upper->value);
+      if (lower)
+        return (type == OptionType::Integer ? "integer, " : "") + key + (lower->inclusive ? " >= " : " > ") +
+               number(lower->value);
+      if (upper)
+        return (type == OptionType::Integer ? "integer, " : "") + key + (upper->inclusive ? " <= " : " < ") +
+               number(upper->value);
+      return "any " + kind;
+    }
+  }
+  return {};
+}
+
+std::string OptionSpec::defaultText() const {
+  if (!defaultValue.empty()) return defaultValue;
+  if (!defaultNote.empty()) return "computed: " + defaultNote;
+  return required ? "required" : "none";
+}
+
+// ---------------------------------------------------------------------------------------------------------
+
+const OptionValues::Value& OptionValues::at(const std::string& key, const char* what) const {
+  const auto it = values_.find(key);
+  if (it == values_.end())
+    throw std::logic_error("OptionValues: " + std::string(what) + " of '" + key + "', which has no value");
+  return it->second;
+}
+bool OptionValues::given(const std::string& key) const {
+  const auto it = values_.find(key);
+  return it != values_.end() && it->second.given;
+}
+bool OptionValues::has(const std::string& key) const {
+  return values_.count(key) > 0;
+}
+double OptionValues::real(const std::string& key) const {
+  return at(key, "real").number;
+}
+long OptionValues::integer(const std::string& key) const {
+  return long(at(key, "integer").number);
+}
+bool OptionValues::flag(const std::string& key) const {
+  return at(key, "flag").flag;
+}
+const std::string& OptionValues::text(const std::string& key) const {
+  const Value& v = at(key, "text");
+  if (v.words.size() != 1) throw std::logic_error("OptionValues: '" + key + "' is not a single word");
+  return v.words.front();
+}
+std::vector<std::string> OptionValues::words(const std::string& key) const {
+  return at(key, "words").words;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+
+OptionSchema& OptionSchema::add(OptionSpec spec) {
+  specs_.push_back(std::move(spec));
+  return *this;
+}
+OptionSchema& OptionSchema::add(const std::vector<OptionSpec>& specs) {
+  for (const OptionSpec& s : specs) add(s);
+  return *this;
+}
+
+std::vector<std::string> OptionSchema::keys() const {
+  std::vector<std::string> out;
+  for (const OptionSpec& s : specs_)
+    if (!contains(out, s.key)) out.push_back(s.key);
+  return out;
+}
+
+std::string OptionSchema::conditionValue(const std::string& key, const OptionTokens& tokens) const {
+  for (const auto& [k, t] : tokens)
+    if (k == key) return t.size() == 1 ? t[0] : display(t);
+  for (const OptionSpec& s : specs_)
+    if (s.key == key) return s.defaultValue;
+  return {};
+}
+
+const OptionSpec* OptionSchema::applicable(const std::string& key, const OptionTokens& tokens) const {
+  for (const OptionSpec& s : specs_) {
+    if (s.key != key) continue;
+    bool ok = true;
+    for (const OptionCondition& c : s.when) {
+      const bool given =
+          std::any_of(tokens.begin(), tokens.end(), [&](const auto& kt) { return kt.first == c.key; });
+      ok = ok && holds(c, conditionValue(c.key, tokens), given);
+    }
+    if (ok) return &s;
+  }
+  return nullptr;
+}
+
+OptionValues OptionSchema::validate(const OptionTokens& tokens) const {
+  const std::vector<std::string> all = keys();
+  std::vector<std::string> ours, host;
+  for (const OptionSpec& s : specs_)
+    if (!contains(ours, s.key) && !contains(host, s.key)) (s.host ? host : ours).push_back(s.key);
+  std::set<std::string> seen;
+  for (const auto& [key, toks] : tokens) {
+    if (!contains(all, key))
+      throw OptionError(key, "unknown option '" + key + "'; did you mean '" + fsi::nearestName(key, all) +
+                                 "'? Valid options: " + join(ours, " ") +
+                                 (host.empty() ? "" : " (and " + hostName_ + "'s: " + join(host, " ") + ")"));
+    if (!seen.insert(key).second) throw OptionError(key, "option '" + key + "' is given twice");
+    for (const OptionSpec& s : specs_)
+      if (s.key == key && !s.refusal.empty())
+        throw OptionError(key, "option '" + key + "' cannot be used here: " + s.refusal);
+  }
+
+  OptionValues out;
+  for (const auto& [key, toks] : tokens) {
+    const OptionSpec* spec = applicable(key, tokens);
+    if (!spec) {
+      // Given but without effect: check it against the spec it is closest to applying, and say why.
+      std::size_t fewest = std::numeric_limits<std::size_t>::max();
+      std::vector<std::string> failing, needed;
+      for (const OptionSpec& s : specs_) {
+        if (s.key != key) continue;
+        std::vector<std::string> f, n;
+        for (const OptionCondition& c : s.when) {
+          const bool given =
+              std::any_of(tokens.begin(), tokens.end(), [&](const auto& kt) { return kt.first == c.key; });
+          const std::string value = conditionValue(c.key, tokens);
+          if (holds(c, value, given)) continue;
+          f.push_back(c.values.empty() ? "without " + c.key : c.key + " " + value);
+          n.push_back(c.values.empty() ? c.key : c.key + " " + join(c.values, " or "));
+        }
+        if (f.size() < fewest) {
+          fewest = f.size();
+          spec = &s;
+          failing = f;
+          needed = n;
+        }
+      }
+      out.warnings_.push_back("option '" + key + "' has no effect " +
+                              (failing.front().rfind("without ", 0) == 0 ? "" : "with ") +
+                              join(failing, " and ") + " (it needs " + join(needed, " and ") + ")");
+    }
+    OptionValues::Value v = parse(*spec, toks);
+    v.given = true;
+    out.values_[key] = std::move(v);
+  }
+  for (const std::string& key : all) {
+    if (out.values_.count(key)) continue;
+    for (const OptionSpec& s : specs_)
+      if (s.key == key && s.required)
+        throw OptionError(key,
+                          "option '" + key + "' is required: " + s.description + " (" + s.rangeText() + ")");
+    const OptionSpec* spec = applicable(key, tokens);
+    if (spec && !spec->defaultValue.empty()) out.values_[key] = parse(*spec, {spec->defaultValue});
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+
+// ---------------------------------------------------------------------------------------------------------
+// The tables. Why each range:
+//   omega in (0, 1]: on an added-mass problem every eigenvalue of the iteration Jacobian is -lambda <= 0, so
+//     relaxation with omega > 1 contracts no mode better than omega = 1 does (docs/COUPLING.md); Aitken
+//     clamps to 1 for the same reason. 0 would never move.
+//   tolerance in (0, 1): a relative residual; 1 or more accepts any first iterate, 0 never converges.
+//   maxIterations >= 1, reuse >= 0, extrapolation 0..2 (the predictors CouplingScheme has), subcycles >= 1.
+//   rho, mapTolerance > 0: a density and a distance.
+
+namespace {
+
+OptionSpec realSpec(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
+                    std::string description) {
+  OptionSpec s;
+  s.key = std::move(key);
+  s.type = OptionType::Real;
+  s.defaultValue = std::move(def);
+  s.lower = lo;
+  s.upper = hi;
+  s.description = std::move(description);
+  return s;
+}
+
+OptionSpec integerSpec(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
+                       std::string description) {
+  OptionSpec s = realSpec(std::move(key), std::move(def), lo, hi, std::move(description));
+  s.type = OptionType::Integer;
+  return s;
+}
+
+OptionSpec wordSpec(std::string key, OptionType type, std::string def, std::vector<std::string> choices,
+                    std::string description) {
+  OptionSpec s;
+  s.key = std::move(key);
+  s.type = type;
+  s.defaultValue = std::move(def);
+  s.choices = std::move(choices);
+  s.description = std::move(description);
+  return s;
+}
+
+const OptionCondition kWithScene{"scene", {}};
+const OptionCondition kImplicit{"scheme", {"implicit"}};
+
+OptionSpec omegaSpec(const std::string& def, const std::string& description) {
+  return realSpec("omega", def, Bound{0, false}, Bound{1, true}, description);
+}
+
+}  // namespace
+
+const std::vector<AccelerationEntry>& accelerationEntries() {
+  static const std::vector<AccelerationEntry> entries{
+      {"constant",
+       "fixed relaxation d + omega r",
+       {omegaSpec("0.5", "the relaxation factor")},
+       [](const OptionValues& v) -> std::unique_ptr<Acceleration> {
+         return std::make_unique<ConstantRelaxation>(v.real("omega"));
+       }},
+      {"aitken",
+       "Aitken's dynamic relaxation",
+       {omegaSpec("0.5", "relaxation factor of the first iteration; later ones are Aitken's")},
+       [](const OptionValues& v) -> std::unique_ptr<Acceleration> {
+         AitkenOptions o;
+         o.initialOmega = v.real("omega");
+         return std::make_unique<Aitken>(o);
+       }},
+      {"IQN-ILS",
+       "interface quasi-Newton, inverse Jacobian by least squares",
+       {omegaSpec("0.1", "relaxation factor of a window's first iteration"),
+        integerSpec("reuse", "0", Bound{0, true}, std::nullopt,
+                    "also use the columns of this many past windows (8 suits a canopy)")},
+       [](const OptionValues& v) -> std::unique_ptr<Acceleration> {
+         IqnIlsOptions o;
+         o.initialOmega = v.real("omega");
+         o.reuseSteps = int(v.integer("reuse"));
+         return std::make_unique<IqnIls>(o);
+       }},
+  };
+  return entries;
+}
+
+OptionSchema couplingOptionSchema() {
+  OptionSchema s;
+  OptionSpec patches = wordSpec("patches", OptionType::WordList, "", {},
+                                "interface patches; several map onto one structure (baffle pair)");
+  patches.required = true;
+  s.add(patches);
+  OptionSpec rho = realSpec("rho", "", Bound{0, false}, std::nullopt,
+                            "fluid density [kg/m3] (the incompressible solvers' p is kinematic)");
+  rho.required = true;
+  s.add(rho);
+  s.add(realSpec("pRef", "0", std::nullopt, std::nullopt,
+                 "reference pressure [Pa] subtracted from the fluid's"));
+  s.add(wordSpec("viscous", OptionType::Switch, "no", {}, "add the viscous traction of the solver's model"));
+  s.add(
+      wordSpec("scene", OptionType::Text, "", {},
+               "structure scene (with coupling: {interface: ...}); without it: monitor the interface force"));
+
+  std::vector<OptionSpec> coupled;
+  coupled.push_back(wordSpec("scheme", OptionType::Choice, "staggered", {"staggered", "implicit"},
+                             "staggered: one pass per window; implicit: iterate each window to convergence"));
+  std::vector<std::string> names;
+  for (const AccelerationEntry& a : accelerationEntries()) names.push_back(a.name);
+  OptionSpec acceleration = wordSpec("acceleration", OptionType::Choice, "IQN-ILS", names,
+                                     "how the implicit scheme chooses the next interface displacement");
+  acceleration.when = {kImplicit};
+  coupled.push_back(acceleration);
+  for (const AccelerationEntry& a : accelerationEntries())
+    for (OptionSpec o : a.options) {
+      o.when.insert(o.when.begin(), {kImplicit, {"acceleration", {a.name}}});
+      coupled.push_back(o);
+    }
+  OptionSpec tolerance = realSpec("tolerance", "1e-5", Bound{0, false}, Bound{1, false},
+                                  "relative interface-displacement residual that ends a window");
+  tolerance.when = {kImplicit};
+  coupled.push_back(tolerance);
+  OptionSpec maxIterations =
+      integerSpec("maxIterations", "30", Bound{1, true}, std::nullopt, "iterations per window at most");
+  maxIterations.when = {kImplicit};
+  coupled.push_back(maxIterations);
+  coupled.push_back(integerSpec("extrapolation", "1", Bound{0, true}, Bound{2, true},
+                                "predictor order of a window's first displacement (staggered: stability)"));
+  coupled.push_back(wordSpec("projection", OptionType::Choice, "consistent", {"consistent", "lumped", "dual"},
+                             "L2 projection between the non-matching interface meshes"));
+  OptionSpec mapTolerance = realSpec("mapTolerance", "", Bound{0, false}, std::nullopt,
+                                     "[m] fluid points farther than this from the structure stop the run");
+  mapTolerance.defaultNote = "0.25 x mean structure edge length";
+  coupled.push_back(mapTolerance);
+  coupled.push_back(integerSpec("subcycles", "1", Bound{1, true}, std::nullopt,
+                                "at least this many structural steps per fluid step"));
+  OptionSpec restore = wordSpec("restoreMeshPoints", OptionType::Switch, "yes", {},
+                                "a repeated step starts from the first pass's mesh points (exact repeat)");
+  restore.when = {kImplicit};
+  coupled.push_back(restore);
+  coupled.push_back(wordSpec("verifyCheckpoint", OptionType::Switch, "no", {},
+                             "debug: solve every pass twice from the checkpoint, report the differences"));
+  OptionSpec progress = integerSpec("progress", "", Bound{0, true}, std::nullopt,
+                                    "a [fsi] progress line every this many windows; 0: none");
+  progress.defaultNote = "ceil(windows / 40), i.e. 20 to 40 lines per run";
+  coupled.push_back(progress);
+  for (OptionSpec& o : coupled) {
+    o.when.insert(o.when.begin(), kWithScene);
+    s.add(o);
+  }
+  return s;
+}
+
+std::unique_ptr<Acceleration> makeAcceleration(const OptionValues& values) {
+  const std::string& name = values.text("acceleration");
+  for (const AccelerationEntry& a : accelerationEntries())
+    if (a.name == name) return a.make(values);
+  throw std::invalid_argument("makeAcceleration: unknown acceleration " + name);
+}
+
+CouplingConfig couplingConfig(const OptionValues& values, double timeWindowSize, double endTime) {
+  CouplingConfig c;
+  c.kind = values.text("scheme") == "implicit" ? SchemeKind::Implicit : SchemeKind::Staggered;
+  c.timeWindowSize = timeWindowSize;
+  c.endTime = endTime;
+  c.extrapolationOrder = int(values.integer("extrapolation"));
+  if (c.kind == SchemeKind::Implicit) {
+    c.relativeTolerance = values.real("tolerance");
+    c.maxIterations = int(values.integer("maxIterations"));
+  }
+  return c;
+}
+
+std::string optionTable(const OptionSchema& schema) {
+  std::string out = "| key | type | default | valid | used with | description |\n|---|---|---|---|---|---|\n";
+  for (const OptionSpec& s : schema.specs()) {
+    std::vector<std::string> when;
+    for (const OptionCondition& c : s.when)
+      when.push_back(c.values.empty() ? c.key : c.key + " " + join(c.values, "/"));
+    out += "| `" + s.key + "` | " + toString(s.type) + " | " + s.defaultText() + " | " + s.rangeText() +
+           " | " + (when.empty() ? "always" : join(when, ", ")) + " | " +
+           (s.refusal.empty() ? s.description : s.refusal) + " |\n";
+  }
+  return out;
+}
+
+}  // namespace fsi::coupling

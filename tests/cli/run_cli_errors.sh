@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# Exit codes and messages of the fsi command for bad input: every case must exit with 2 and say what is wrong
+# (file:line:col and key for scene errors); --help exits 0; a good run exits 0 and writes a non-empty
+# summary.json. Usage: run_cli_errors.sh FSI_BINARY WORK_DIR
+set -u
+fsi=$1
+work=$2
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+failures=0
+
+# expect CODE TEXT -- COMMAND...: runs COMMAND, checks its exit code and that stderr+stdout contain TEXT.
+expect() {
+  local code=$1 text=$2
+  shift 3
+  local out rc
+  out=$("$@" 2>&1)
+  rc=$?
+  if [[ $rc -ne $code ]] || [[ "$out" != *"$text"* ]]; then
+    echo "FAIL: $* -> exit $rc (want $code), output:"
+    echo "$out" | head -5 | sed 's/^/    /'
+    echo "    (want text: $text)"
+    failures=$((failures + 1))
+  else
+    echo "ok:   exit $rc  $*"
+  fi
+}
+
+scene() {  # scene FILE EXTRA: the 8x8 drum of the unit tests plus EXTRA
+  {
+    printf '%s\n' "${3:-title: drum}" \
+      "materials:" \
+      "  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}" \
+      "meshes:" \
+      "  sheet:" \
+      "    generator: {type: rectangle, size: [1, 1], divisions: [8, 8], pattern: cross}" \
+      "    material: film" \
+      "constraints:" \
+      "  - {nodes: sheet/boundary, fix: all}" \
+      "time: {end: 0.001}"
+    printf '%s' "$2"
+  } > "$1"
+}
+
+scene good.yaml $'probes:\n  centre: {type: displacement, nodes: {nearest: [0, 0, 0]}, component: z}\n'
+
+# Command-line errors (CLI11 used to exit with 105-114).
+expect 2 "A subcommand is required" -- "$fsi"
+expect 2 "unknown command 'bogus'; commands: run" -- "$fsi" bogus
+expect 2 "scene is required" -- "$fsi" run --out o
+expect 2 "--out" -- "$fsi" run good.yaml
+expect 2 "--out" -- "$fsi" run good.yaml --out
+expect 2 "--bogus" -- "$fsi" run good.yaml --out o --bogus
+expect 2 "--quadrature-level" -- "$fsi" map-check a.msh b.msh --quadrature-level 4294967297
+expect 2 "--tolerance" -- "$fsi" map-check a.msh b.msh --tolerance inf
+expect 2 "run 'fsi run --help'" -- "$fsi" run good.yaml --out o --bogus
+expect 0 "Usage" -- "$fsi" --help
+expect 0 "--set" -- "$fsi" run --help
+
+# Files and directories.
+expect 2 "missing.yaml: cannot open scene file" -- "$fsi" run missing.yaml --out o
+mkdir -p adir
+expect 2 "adir: is a directory" -- "$fsi" run adir --out o
+touch afile
+expect 2 "--out afile/sub: cannot create the output directory" -- "$fsi" run good.yaml --out afile/sub
+expect 2 "no such file" -- "$fsi" validate no-such-case
+
+# Scene errors: located, exit 2.
+scene dup.yaml $'effects:\n  pressure: {triangles: sheet, value: 100.0e3, value: 1.0}\n'
+expect 2 "dup.yaml:12:48: effects.pressure.value: duplicate key 'value' (first at line 12, column 32)" -- \
+  "$fsi" run dup.yaml --out o
+scene probes.yaml $'probes:\n  a: {type: volume, triangles: sheet}\n  a: {type: volume, triangles: sheet}\n'
+expect 2 "probes.yaml:13:3: probes.a: duplicate key 'a'" -- "$fsi" run probes.yaml --out o
+scene nonodes.yaml $'probes:\n  tip: {type: displacement, component: z}\n'
+expect 2 "nonodes.yaml:12:8: probes.tip: missing required key 'nodes'" -- "$fsi" run nonodes.yaml --out o
+expect 2 "meshes.sheet.generator.divisions[0]: 4294967297 is out of range" -- \
+  "$fsi" run good.yaml --out o --set 'meshes.sheet.generator.divisions=[4294967297, 8]'
+expect 2 "materials.film.young: 1e400 is out of range" -- "$fsi" run good.yaml --out o --set materials.film.young=1e400
+expect 2 "'time.end' is a value ('0.001'), not a mapping" -- "$fsi" run good.yaml --out o --set time.end.x=1
+expect 2 "index 12345678901234567890123 is out of range" -- \
+  "$fsi" run good.yaml --out o --set constraints.12345678901234567890123.fix=x
+expect 2 "expected KEY.PATH=VALUE" -- "$fsi" run good.yaml --out o --set novalue
+
+# A coupled scene run alone has no end time: an input error, not an "instability at t = nan".
+grep -v '^time:' good.yaml > coupled.yaml && printf 'coupling: {interface: sheet}\n' >> coupled.yaml
+expect 2 "coupled.yaml: time.end: this coupled scene takes its end time from the flow solver" -- \
+  "$fsi" run coupled.yaml --out o
+expect 0 "probe  centre" -- "$fsi" run coupled.yaml --out coupled-out --set time.end=0.001
+
+# A title that is not UTF-8 is refused before the run: nothing is written, no empty summary.json.
+scene latin1.yaml "" $'title: caf\xe9'
+expect 2 "latin1.yaml:1:8: title: text is not valid UTF-8" -- "$fsi" run latin1.yaml --out latin1-out
+if [[ -e latin1-out/summary.json ]]; then
+  echo "FAIL: latin1-out/summary.json written"
+  failures=$((failures + 1))
+fi
+
+# fsi validate reads reference.yaml with the same checks.
+mkdir -p case1 case2 && cp good.yaml case1/scene.yaml && cp good.yaml case2/scene.yaml
+printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" "    scene: other.yaml" \
+  "    expect: {centre: {value: 0, rel_tol: 1}}" > case1/reference.yaml
+expect 2 "case1/reference.yaml:5:5: checks[0].scene: duplicate key 'scene' (first at line 4, column 5)" -- \
+  "$fsi" validate case1 --out v1 --quiet
+printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" \
+  "    expect: {centre: {value: 0, rel_tol: -1}}" > case2/reference.yaml
+expect 2 "checks[0].expect.centre.rel_tol: must be >= 0" -- "$fsi" validate case2 --out v2 --quiet
+
+# A good run: exit 0 and a readable summary.
+expect 0 "probe  centre" -- "$fsi" run good.yaml --out good-out
+if [[ ! -s good-out/summary.json ]]; then
+  echo "FAIL: good-out/summary.json missing or empty"
+  failures=$((failures + 1))
+fi
+
+echo "$failures failure(s)"
+[[ $failures -eq 0 ]]

@@ -1,0 +1,61 @@
+#!/usr/bin/python3
+"""summarize.py reads the coupling history of continued runs: comment lines ('#', e.g. `# restart at t = ...`
+before the rows a continued run appends to coupling.csv) are skipped, so is a repeated header, and rows that a
+continued run logs again (it restarted before the last logged window) replace the earlier ones; the older
+layout (coupling_from_<time>.csv per continued part) gives the same history.
+Usage: test_summarize.py SUMMARIZE_DIR WORK_DIR"""
+import os
+import shutil
+import sys
+
+sys.path.insert(0, sys.argv[1])
+import summarize  # noqa: E402
+
+HEADER = "time,iterations,converged,residual,Fx_fluid,Fy_fluid,Fz_fluid,Fx_structure,Fy_structure,Fz_structure,mid_z\n"
+
+
+def row(t, iterations, z, converged=1):
+    # fluid and structure forces equal except in window t = 0.3 of the first part (replaced later)
+    fz_s = 2.0 if t == 0.3 and z < 0 else 1.0
+    return f"{t},{iterations},{converged},1e-5,0,0,1.0,0,0,{fz_s},{z}\n"
+
+
+def case(work, name, files):
+    d = os.path.join(work, name)
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(os.path.join(d, "structure"))
+    for i, (fname, text) in enumerate(files):
+        path = os.path.join(d, "structure", fname)
+        with open(path, "w") as f:
+            f.write(text)
+        os.utime(path, (1e9 + i, 1e9 + i))  # the parts in order of writing
+    return d
+
+
+def main():
+    work = sys.argv[2]
+    # first part: windows 0.1, 0.2, 0.3 (0.3 written, then the run was killed before its write time);
+    # continued from t = 0.2: 0.3 and 0.4 again, with other values
+    first = HEADER + row(0.1, 3, 0.01) + row(0.2, 4, 0.02) + row(0.3, 9, -1.0, converged=0)
+    second = row(0.3, 2, 0.03) + row(0.4, 5, 0.04)
+    appended = case(work, "appended", [("coupling.csv", first + "# restart at t = 0.2\n" + second)])
+    appended_header = case(work, "appended-header",
+                           [("coupling.csv", first + "# restart at t = 0.2\n" + HEADER + second)])
+    split = case(work, "split", [("coupling.csv", first), ("coupling_from_0.2.csv", HEADER + second)])
+    ok = True
+    for d in (appended, appended_header, split):
+        rows, t, v = summarize.history(d, "mid_z")
+        stats = summarize.iteration_statistics(rows)
+        force = summarize.force_difference(rows)
+        good = (t == [0.1, 0.2, 0.3, 0.4] and v == [0.01, 0.02, 0.03, 0.04] and stats["windows"] == 4
+                and stats["mean_iterations"] == (3 + 4 + 2 + 5) / 4 and stats["max_iterations"] == 5
+                and stats["not_converged"] == 0 and force == 0.0)
+        print(f"{os.path.basename(d)}: times {t}, values {v}, {stats}, force difference {force}:"
+              f" {'ok' if good else 'WRONG'}")
+        ok &= good
+    print("PASS" if ok else "FAIL")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,13 @@
+// Parallelogram (0,0,0) (2,0,0) (2.5,1,0) (0.5,1,0), area 2, normal +z, structured into 8 x 4 quadrangles
+// whose diagonals differ in length; each is read as two triangles split along its shorter diagonal.
+// Physical surface "canopy", physical curve "edge" (y = 0).
+Point(1) = {0, 0, 0}; Point(2) = {2, 0, 0}; Point(3) = {2.5, 1, 0}; Point(4) = {0.5, 1, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Transfinite Curve{1, 3} = 9;
+Transfinite Curve{2, 4} = 5;
+Transfinite Surface{1};
+Recombine Surface{1};
+Physical Surface("canopy") = {1};
+Physical Curve("edge") = {1};

@@ -1,0 +1,3 @@
+// rectangle.geo with 6-node triangles, which fsi refuses.
+Include "rectangle.geo";
+Mesh.ElementOrder = 2;

@@ -1,0 +1,335 @@
+// The coupling option table (coupling/scheme/CouplingOptions): misspelt keys name their nearest match, bad
+// values name the key and the valid range, options without effect give a warning, and the table's ranges
+// agree with the checks of the library classes that use the values.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "TestScenes.hpp"
+#include "coupling/StructureParticipant.hpp"
+#include "coupling/scheme/CouplingOptions.hpp"
+#include "structure/scene/NearestName.hpp"
+#include "structure/scene/Scene.hpp"
+
+using namespace fsi::coupling;
+
+namespace {
+
+// What a coupled case writes (cases/coupled/cavity-membrane-2d), plus `extra`.
+OptionTokens implicitCase(const OptionTokens& extra = {}) {
+  OptionTokens t{{"patches", {"(", "bottom", ")"}},
+                 {"rho", {"1"}},
+                 {"pRef", {"0"}},
+                 {"scene", {"structure.yaml"}},
+                 {"scheme", {"implicit"}},
+                 {"acceleration", {"IQN-ILS"}},
+                 {"omega", {"0.1"}},
+                 {"reuse", {"8"}},
+                 {"tolerance", {"1e-4"}},
+                 {"maxIterations", {"40"}},
+                 {"extrapolation", {"1"}},
+                 {"viscous", {"yes"}}};
+  t.insert(t.end(), extra.begin(), extra.end());
+  return t;
+}
+
+OptionTokens minimal(const OptionTokens& extra = {}) {
+  OptionTokens t{{"patches", {"(", "bottom", ")"}}, {"rho", {"1"}}, {"scene", {"structure.yaml"}}};
+  t.insert(t.end(), extra.begin(), extra.end());
+  return t;
+}
+
+// Replaces (or adds) one key of a token list.
+OptionTokens with(OptionTokens t, const std::string& key, const std::string& value) {
+  for (auto& [k, v] : t)
+    if (k == key) {
+      v = {value};
+      return t;
+    }
+  t.push_back({key, {value}});
+  return t;
+}
+
+std::string errorOf(const OptionTokens& tokens) {
+  try {
+    couplingOptionSchema().validate(tokens);
+  } catch (const OptionError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+bool accepted(const OptionTokens& tokens) {
+  return errorOf(tokens) == "(accepted)";
+}
+
+bool throws(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument&) {
+    return true;
+  }
+  return false;
+}
+
+// A structure that is never asked to solve: CouplingScheme's constructor only checks the configuration.
+struct IdleStructure : StructureSolver {
+  Eigen::VectorXd solve(double, double, const Eigen::VectorXd&, const Eigen::VectorXd& l) override {
+    return l;
+  }
+  void saveCheckpoint() override {}
+  void restoreCheckpoint() override {}
+};
+
+}  // namespace
+
+TEST(CouplingOptions, EveryMisspeltKeyNamesItsNearestMatchAndTheValidKeys) {
+  const std::vector<std::pair<std::string, std::string>> typos{{"shceme", "scheme"},
+                                                               {"accleration", "acceleration"},
+                                                               {"omgea", "omega"},
+                                                               {"tolerence", "tolerance"},
+                                                               {"maxIteration", "maxIterations"},
+                                                               {"viscos", "viscous"},
+                                                               {"subcycle", "subcycles"},
+                                                               {"projecton", "projection"},
+                                                               {"maptolerance", "mapTolerance"},
+                                                               {"restoreMeshPoint", "restoreMeshPoints"},
+                                                               {"extrapolaton", "extrapolation"},
+                                                               {"resue", "reuse"},
+                                                               {"progres", "progress"},
+                                                               {"sceen", "scene"},
+                                                               {"verifyCheckpoints", "verifyCheckpoint"},
+                                                               {"pref", "pRef"}};
+  const std::vector<std::string> keys = couplingOptionSchema().keys();
+  for (const auto& [typo, key] : typos) {
+    const std::string msg = errorOf(implicitCase({{typo, {"1"}}}));
+    EXPECT_NE(msg.find("unknown option '" + typo + "'; did you mean '" + key + "'?"), std::string::npos)
+        << msg;
+    for (const std::string& k : keys)
+      EXPECT_NE(msg.find(" " + k), std::string::npos) << k << " not listed: " << msg;
+    try {
+      couplingOptionSchema().validate(implicitCase({{typo, {"1"}}}));
+    } catch (const OptionError& e) {
+      EXPECT_EQ(e.key(), typo);  // the adapter looks up the line of this key
+    }
+  }
+}
+
+TEST(CouplingOptions, EveryBadValueNamesTheKeyAndTheValidRange) {
+  struct Case {
+    std::string key, value, range;
+  };
+  const std::vector<Case> cases{
+      {"omega", "-1", "0 < omega <= 1"},
+      {"omega", "0", "0 < omega <= 1"},
+      {"omega", "50", "0 < omega <= 1"},
+      {"omega", "fast", "0 < omega <= 1"},
+      {"reuse", "-3", "integer, reuse >= 0"},
+      {"reuse", "2.5", "integer, reuse >= 0"},
+      {"maxIterations", "0", "integer, maxIterations >= 1"},
+      {"extrapolation", "7", "integer, 0 <= extrapolation <= 2"},
+      {"extrapolation", "-1", "integer, 0 <= extrapolation <= 2"},
+      {"tolerance", "0", "0 < tolerance < 1"},
+      {"tolerance", "1", "0 < tolerance < 1"},
+      {"subcycles", "0", "integer, subcycles >= 1"},
+      {"mapTolerance", "0", "mapTolerance > 0"},
+      {"rho", "0", "rho > 0"},
+      {"rho", "-1.2", "rho > 0"},
+      {"progress", "-1", "integer, progress >= 0"},
+      {"scheme", "implict", "one of staggered implicit"},
+      {"acceleration", "IQN", "one of constant aitken IQN-ILS"},
+      {"projection", "lumpd", "one of consistent lumped dual"},
+      {"viscous", "maybe", "yes or no"},
+      {"pRef", "inf", "any number"},
+  };
+  for (const Case& c : cases) {
+    const std::string msg = errorOf(with(implicitCase(), c.key, c.value));
+    EXPECT_NE(msg.find("option '" + c.key + "' = " + c.value), std::string::npos) << msg;
+    EXPECT_NE(msg.find("valid: " + c.range), std::string::npos) << msg;
+  }
+  EXPECT_NE(errorOf(with(implicitCase(), "scheme", "implict")).find("did you mean 'implicit'"),
+            std::string::npos);
+  OptionTokens empty = implicitCase();
+  empty[6].second.clear();  // `omega ;`
+  EXPECT_NE(errorOf(empty).find("option 'omega' = (nothing) has no value"), std::string::npos)
+      << errorOf(empty);
+  // Missing required keys.
+  EXPECT_NE(errorOf({{"patches", {"a"}}}).find("option 'rho' is required"), std::string::npos);
+  EXPECT_NE(errorOf({{"rho", {"1"}}}).find("option 'patches' is required"), std::string::npos);
+  EXPECT_NE(errorOf(implicitCase({{"omega", {"0.2"}}})).find("given twice"), std::string::npos);
+}
+
+TEST(CouplingOptions, ValuesDefaultsAndLists) {
+  const OptionSchema schema = couplingOptionSchema();
+  const OptionValues v = schema.validate(implicitCase());
+  EXPECT_TRUE(v.warnings().empty());
+  EXPECT_EQ(v.words("patches"), std::vector<std::string>{"bottom"});
+  EXPECT_EQ(v.text("scheme"), "implicit");
+  EXPECT_DOUBLE_EQ(v.real("tolerance"), 1e-4);
+  EXPECT_EQ(v.integer("reuse"), 8);
+  EXPECT_TRUE(v.flag("viscous"));
+  EXPECT_TRUE(v.flag("restoreMeshPoints"));  // default of an implicit run
+  EXPECT_FALSE(v.given("progress"));         // the host computes it
+  EXPECT_FALSE(v.has("mapTolerance"));
+
+  // Defaults: staggered; omega's default belongs to the chosen acceleration.
+  const OptionValues d = schema.validate(minimal());
+  EXPECT_EQ(d.text("scheme"), "staggered");
+  EXPECT_EQ(d.integer("extrapolation"), 1);
+  EXPECT_EQ(d.text("projection"), "consistent");
+  EXPECT_FALSE(d.has("omega"));  // no effect without the implicit scheme
+  EXPECT_DOUBLE_EQ(schema.validate(minimal({{"scheme", {"implicit"}}})).real("omega"), 0.1);
+  EXPECT_DOUBLE_EQ(
+      schema.validate(minimal({{"scheme", {"implicit"}}, {"acceleration", {"constant"}}})).real("omega"),
+      0.5);
+  EXPECT_FALSE(
+      schema.validate(minimal({{"scheme", {"implicit"}}, {"acceleration", {"aitken"}}})).has("reuse"));
+
+  // Lists as OpenFOAM tokenises them, with and without a count; switches in OpenFOAM's words.
+  EXPECT_EQ(schema.validate(with(minimal(), "patches", "canopy")).words("patches"),
+            std::vector<std::string>{"canopy"});
+  OptionTokens two = minimal();
+  two[0].second = {"2", "(", "up", "down", ")"};
+  EXPECT_EQ(schema.validate(two).words("patches"), (std::vector<std::string>{"up", "down"}));
+  two[0].second = {"3", "(", "up", "down", ")"};
+  EXPECT_NE(errorOf(two).find("count"), std::string::npos);
+  two[0].second = {"(", ")"};
+  EXPECT_NE(errorOf(two).find("empty list"), std::string::npos);
+  for (const char* yes : {"yes", "on", "true", "y"})
+    EXPECT_TRUE(schema.validate(with(minimal(), "viscous", yes)).flag("viscous"));
+  for (const char* no : {"no", "off", "false", "n"})
+    EXPECT_FALSE(schema.validate(with(minimal(), "viscous", no)).flag("viscous"));
+}
+
+TEST(CouplingOptions, OptionsWithoutEffectGiveAWarningNotAnError) {
+  const OptionSchema schema = couplingOptionSchema();
+  // Switching an implicit case to staggered keeps its implicit settings: each is named, none stops the run.
+  const OptionValues v = schema.validate(with(implicitCase(), "scheme", "staggered"));
+  ASSERT_EQ(v.warnings().size(), 5u);  // acceleration omega reuse tolerance maxIterations
+  EXPECT_EQ(v.warnings()[1], "option 'omega' has no effect with scheme staggered (it needs scheme implicit)");
+  const OptionValues a = schema.validate(with(implicitCase(), "acceleration", "aitken"));
+  ASSERT_EQ(a.warnings().size(), 1u);
+  EXPECT_EQ(a.warnings()[0],
+            "option 'reuse' has no effect with acceleration aitken (it needs acceleration IQN-ILS)");
+  // Without a scene the object only monitors forces.
+  const OptionValues m = schema.validate({{"patches", {"a"}}, {"rho", {"1"}}, {"scheme", {"implicit"}}});
+  ASSERT_EQ(m.warnings().size(), 1u);
+  EXPECT_EQ(m.warnings()[0], "option 'scheme' has no effect without scene (it needs scene)");
+  // A value without effect is still checked.
+  EXPECT_NE(errorOf(with(with(implicitCase(), "scheme", "staggered"), "omega", "50")).find("0 < omega <= 1"),
+            std::string::npos);
+}
+
+TEST(CouplingOptions, RangesAgreeWithTheLibraryChecks) {
+  IdleStructure idle;
+  // Each value: does the table accept it, does the class that uses it accept it?
+  for (const char* acc : {"constant", "aitken", "IQN-ILS"})
+    for (const char* omega : {"-1", "0", "1e-9", "0.5", "1", "1.000001", "50"}) {
+      const OptionTokens t = with(with(implicitCase(), "acceleration", acc), "omega", omega);
+      const bool table = accepted(t);
+      const double w = std::stod(omega);
+      bool library = false;
+      for (const AccelerationEntry& e : accelerationEntries())
+        if (e.name == acc) {
+          OptionSchema loose;  // the entry's factory with the value unchecked
+          OptionSpec any;
+          any.key = "omega";
+          any.type = OptionType::Real;
+          loose.add(any);
+          OptionSpec reuse;
+          reuse.key = "reuse";
+          reuse.type = OptionType::Integer;
+          reuse.defaultValue = "0";
+          loose.add(reuse);
+          library = !throws([&] { e.make(loose.validate({{"omega", {omega}}})); });
+        }
+      EXPECT_EQ(table, library) << acc << " omega " << w;
+    }
+  for (const int reuse : {-1, 0, 8}) {
+    IqnIlsOptions o;
+    o.reuseSteps = reuse;
+    EXPECT_EQ(accepted(with(implicitCase(), "reuse", std::to_string(reuse))), !throws([&] { IqnIls x(o); }))
+        << reuse;
+  }
+  for (const char* tol : {"0", "1e-12", "0.5", "1", "2"}) {
+    CouplingConfig c;
+    c.timeWindowSize = 0.01;
+    c.relativeTolerance = std::stod(tol);
+    EXPECT_EQ(accepted(with(implicitCase(), "tolerance", tol)),
+              !throws([&] { CouplingScheme s(c, idle, std::make_unique<Aitken>()); }))
+        << tol;
+  }
+  for (const int n : {0, 1, 5}) {
+    CouplingConfig c;
+    c.timeWindowSize = 0.01;
+    c.maxIterations = n;
+    EXPECT_EQ(accepted(with(implicitCase(), "maxIterations", std::to_string(n))),
+              !throws([&] { CouplingScheme s(c, idle, std::make_unique<Aitken>()); }))
+        << n;
+  }
+  for (const int p : {-1, 0, 2, 3}) {
+    CouplingConfig c;
+    c.kind = SchemeKind::Staggered;
+    c.timeWindowSize = 0.01;
+    c.extrapolationOrder = p;
+    EXPECT_EQ(accepted(with(minimal(), "extrapolation", std::to_string(p))),
+              !throws([&] { CouplingScheme s(c, idle); }))
+        << p;
+  }
+  StructureParticipant drum(fsi::structure::loadSceneFromString(
+      fsi::test::drumScene("coupling: {interface: sheet}\ntime: {end: 1.0}\n"), "drum.yaml"));
+  for (const int n : {-1, 0, 1, 3})
+    EXPECT_EQ(accepted(with(minimal(), "subcycles", std::to_string(n))),
+              !throws([&] { drum.setMinSubcycles(n); }))
+        << n;
+}
+
+TEST(CouplingOptions, ConfigAndAccelerationFromValues) {
+  const OptionValues v = couplingOptionSchema().validate(implicitCase());
+  const CouplingConfig c = couplingConfig(v, 0.01, 10.0);
+  EXPECT_EQ(c.kind, SchemeKind::Implicit);
+  EXPECT_DOUBLE_EQ(c.relativeTolerance, 1e-4);
+  EXPECT_EQ(c.maxIterations, 40);
+  EXPECT_EQ(c.extrapolationOrder, 1);
+  EXPECT_EQ(makeAcceleration(v)->name(), "iqn-ils(q=8)");
+  const OptionValues a = couplingOptionSchema().validate(with(implicitCase(), "acceleration", "aitken"));
+  EXPECT_EQ(makeAcceleration(a)->name(), "aitken");
+}
+
+TEST(CouplingOptions, EditDistanceAndTable) {
+  EXPECT_EQ(fsi::editDistance("shceme", "scheme"), 1);  // a swap of neighbours is one edit
+  EXPECT_EQ(fsi::editDistance("kitten", "sitting"), 3);
+  EXPECT_EQ(fsi::editDistance("MAPTOLERANCE", "mapTolerance"), 0);
+  EXPECT_EQ(fsi::nearestName("x", {}), "");
+  // Every default in the table is a valid value of its own option, and the docs table lists every key.
+  const OptionSchema schema = couplingOptionSchema();
+  for (const OptionSpec& s : schema.specs()) {
+    if (s.defaultValue.empty()) continue;
+    OptionSpec plain = s;
+    plain.when.clear();
+    OptionSchema alone;
+    alone.add(plain);
+    EXPECT_NO_THROW(alone.validate({{s.key, {s.defaultValue}}})) << s.key;
+  }
+  const std::string table = optionTable(schema);
+  for (const std::string& k : schema.keys()) EXPECT_NE(table.find("| `" + k + "` |"), std::string::npos) << k;
+}
+
+TEST(CouplingOptions, DocsListTheTable) {
+  // docs/COUPLING.md holds the table between markers, exactly as the code has it.
+  std::ifstream is(std::string(FSI_SOURCE_DIR) + "/docs/COUPLING.md");
+  std::stringstream ss;
+  ss << is.rdbuf();
+  const std::string doc = ss.str(), begin = "<!-- coupling-options:begin -->\n",
+                    end = "<!-- coupling-options:end -->";
+  const auto a = doc.find(begin), b = doc.find(end);
+  ASSERT_NE(a, std::string::npos);
+  ASSERT_NE(b, std::string::npos);
+  const std::string table = optionTable(couplingOptionSchema());
+  EXPECT_EQ(doc.substr(a + begin.size(), b - a - begin.size()), table) << "docs/COUPLING.md should have:\n"
+                                                                       << table;
+}

@@ -159,6 +159,21 @@ as_user() {
     SHELL=/bin/bash TERM=dumb PATH=/usr/local/bin:/usr/bin:/bin /bin/bash -c "$1"
 }
 
+# kernel file systems, mounted as soon as the root exists (apt's terminal log wants /dev/pts): /proc, /sys,
+# /dev with its own pts and shm (OpenMPI's shared memory)
+mount_kernel_file_systems() {
+  mkdir -p "$root/proc" "$root/sys" "$root/dev"
+  mount -t proc proc "$root/proc" -o nosuid,noexec,nodev
+  mount -t sysfs sys "$root/sys" -o nosuid,noexec,nodev,ro
+  if ! mount -t devtmpfs udev "$root/dev" -o mode=0755,nosuid 2>/dev/null; then
+    mount --bind /dev "$root/dev"
+    mount --make-rslave "$root/dev" # the pts and shm mounts below must not reach this machine's /dev
+  fi
+  mkdir -p "$root/dev/pts" "$root/dev/shm"
+  mount -t devpts devpts "$root/dev/pts" -o newinstance,ptmxmode=0666,mode=0620,gid=5,nosuid,noexec
+  mount -t tmpfs shm "$root/dev/shm" -o mode=1777,nosuid,nodev
+}
+
 say "repository $repo at $(git -C "$repo" rev-parse --short HEAD); mirror $mirror; scratch root $root"
 [ -z "$(git -C "$repo" status --porcelain --untracked-files=no)" ] \
   || say "note: uncommitted changes in $repo are not tested (the check clones HEAD)"
@@ -166,6 +181,7 @@ say "repository $repo at $(git -C "$repo" rev-parse --short HEAD); mirror $mirro
 # --- 1-2: the base system -----------------------------------------------------------------------------------
 if [ -n "${FSI_FRESH_CACHE:-}" ] && [ -f "$FSI_FRESH_CACHE" ]; then
   phase "unpack cached base root $FSI_FRESH_CACHE" "$logs/cache.log" tar -xpf "$FSI_FRESH_CACHE" -C "$root"
+  mount_kernel_file_systems
 else
   if ! command -v debootstrap > /dev/null; then
     phase "install debootstrap" "$logs/debootstrap-install.log" \
@@ -182,32 +198,30 @@ else
   awk -v s="$suite" '$2 ~ "^" s "(-updates|-security)?$" {
          c = ""; for (i = 3; i <= NF; i++) if ($i ~ /^(main|contrib|non-free|non-free-firmware)$/) c = c " " $i
          if (c != "") print "deb " $1 " " $2 c }' <<< "$entries" | awk '!seen[$0]++' > "$root/etc/apt/sources.list"
+  mount_kernel_file_systems
   phase "base packages (${base_packages[*]})" "$logs/base.log" \
     in_root "export DEBIAN_FRONTEND=noninteractive; apt-get update -qq && apt-get install -y -qq --no-install-recommends ${base_packages[*]}"
   if [ -n "${FSI_FRESH_CACHE:-}" ]; then
-    phase "write cache $FSI_FRESH_CACHE" "$logs/cache.log" tar -cpf "$FSI_FRESH_CACHE" -C "$root" .
+    # written aside and renamed, so that an interrupted run leaves no truncated cache behind
+    write_cache() {
+      tar -cpf "$FSI_FRESH_CACHE.part" --exclude='./proc/*' --exclude='./sys/*' --exclude='./dev/*' -C "$root" . &&
+        mv "$FSI_FRESH_CACHE.part" "$FSI_FRESH_CACHE"
+    }
+    phase "write cache $FSI_FRESH_CACHE" "$logs/cache.log" write_cache
   fi
 fi
-# debootstrap copies resolv.conf and hostname from this machine; /etc/hosts (localhost), which the Debian
-# installer writes on a real machine, comes from here too.
-[ -s "$root/etc/hosts" ] || cp /etc/hosts "$root/etc/hosts"
+# debootstrap copies resolv.conf and hostname from this machine but writes no /etc/hosts; the one the Debian
+# installer writes on a real machine (localhost and the host name):
+if [ ! -s "$root/etc/hosts" ]; then
+  printf '127.0.0.1\tlocalhost\n127.0.1.1\t%s\n::1\tlocalhost ip6-localhost ip6-loopback\n' \
+    "$(cat "$root/etc/hostname" 2>/dev/null || hostname)" > "$root/etc/hosts"
+fi
 
 if [ "$user" != root ]; then
   phase "user $user with sudo" "$logs/user.log" in_root "export DEBIAN_FRONTEND=noninteractive
     apt-get install -y -qq --no-install-recommends sudo && useradd --create-home --shell /bin/bash $user &&
     echo '$user ALL=(ALL) NOPASSWD: ALL' > /etc/sudoers.d/$user && chmod 440 /etc/sudoers.d/$user"
 fi
-
-# --- kernel file systems: /proc, /sys, /dev with its own pts and shm (OpenMPI's shared memory) ---------------
-mount -t proc proc "$root/proc" -o nosuid,noexec,nodev
-mount -t sysfs sys "$root/sys" -o nosuid,noexec,nodev,ro
-if ! mount -t devtmpfs udev "$root/dev" -o mode=0755,nosuid 2>/dev/null; then
-  mount --bind /dev "$root/dev"
-  mount --make-rslave "$root/dev" # the pts and shm mounts below must not reach this machine's /dev
-fi
-mkdir -p "$root/dev/pts" "$root/dev/shm"
-mount -t devpts devpts "$root/dev/pts" -o newinstance,ptmxmode=0666,mode=0620,gid=5,nosuid,noexec
-mount -t tmpfs shm "$root/dev/shm" -o mode=1777,nosuid,nodev
 
 # --- 3: the repository at HEAD, cloned with the root's own git ------------------------------------------------
 commit="$(git -C "$repo" rev-parse HEAD)"
@@ -227,7 +241,7 @@ awk '/\[install-deps\] (done|all [0-9]+ packages present)/ { inst = $1 }
      { last = $1 }
      END { printf "[fresh]   inside main.sh: installs %d s, build %d s, main job %d s\n", inst, built - inst, last - built }' \
   "$logs/main.log"
-for f in results/airbag/results.xdmf results/airbag/results.h5 results/airbag/summary.json; do
+for f in results/airbag/{results.xdmf,results.h5,summary.json} results/airbag/plots/{energy,probes,structure}.png; do
   [ -s "$root$home/parachute-fsi/$f" ] || { say "scripts/main.sh wrote no $f"; exit 1; }
 done
 

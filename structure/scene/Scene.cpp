@@ -809,6 +809,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
 
 Scene loadSceneFromString(const std::string& yaml, const std::string& name,
                           const std::vector<std::string>& overrides) {
+  requireUtf8Text(yaml, name);
   YAML::Node root = parseDocument(yaml, name);
   for (const auto& o : overrides) applyOverride(root, o);
   checkDocument(root, name);  // after the overrides, so that their values are checked too

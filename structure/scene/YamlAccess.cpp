@@ -225,6 +225,20 @@ class DocumentChecker {
 
 }  // namespace
 
+void requireUtf8Text(const std::string& text, const std::string& file) {
+  // A YAML stream is UTF-8 text (comments too): refuse any other bytes where they are, before parsing.
+  const std::size_t bad = invalidUtf8At(text);
+  if (bad != std::string::npos) {
+    const std::size_t lineStart = text.rfind('\n', bad == 0 ? 0 : bad - 1);
+    const std::size_t line =
+        1 + std::size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(bad), '\n'));
+    const std::size_t col = lineStart == std::string::npos || bad == 0 ? bad + 1 : bad - lineStart;
+    throw InputError(fmt::format("{}:{}:{}: the file is not valid UTF-8 (byte 0x{:02X}); save it as UTF-8",
+                                 file, line, col,
+                                 static_cast<unsigned>(static_cast<unsigned char>(text[bad]))));
+  }
+}
+
 YAML::Node parseDocument(const std::string& text, const std::string& file) {
   std::vector<YAML::Node> docs;
   try {

@@ -25,6 +25,9 @@ struct IntRange {
   long hi = std::numeric_limits<int>::max();
 };
 
+/// Refuses text that is not UTF-8 anywhere (comments too), at file:line:col of the first bad byte.
+void requireUtf8Text(const std::string& text, const std::string& file);
+
 /// Parses exactly one YAML document from `text`; a syntax error or a second document is an InputError
 /// located in `file`. The tree is not checked yet (see checkDocument), so that --set overrides can be
 /// applied first and are checked with the rest.

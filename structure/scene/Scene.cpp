@@ -380,7 +380,10 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
         if (!(mm.young > 0)) m.failAt("young", "must be > 0");
         if (!(mm.poisson >= 0 && mm.poisson < 0.5)) m.failAt("poisson", "must be in [0, 0.5)");
         if (!(mm.thickness > 0)) m.failAt("thickness", "must be > 0");
-        if (!(mm.density > 0)) m.failAt("density", "must be > 0");
+        if (!(mm.density > 0) || !std::isnormal(mm.density))
+          m.failAt("density",
+                   "must be > 0 and at least 2.2e-308 (a smaller, subnormal density makes the lumped masses "
+                   "underflow to 0)");
         membraneIdx[name] = int(membraneMats.size());
         membraneMats.push_back(mm);
       } else {
@@ -392,7 +395,10 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
         m.finish({"type", "young", "area", "density"});
         if (!(cm.young > 0)) m.failAt("young", "must be > 0");
         if (!(cm.area > 0)) m.failAt("area", "must be > 0");
-        if (!(cm.density > 0)) m.failAt("density", "must be > 0");
+        if (!(cm.density > 0) || !std::isnormal(cm.density))
+          m.failAt("density",
+                   "must be > 0 and at least 2.2e-308 (a smaller, subnormal density makes the lumped masses "
+                   "underflow to 0)");
         cableIdx[name] = int(cableMats.size());
         cableMats.push_back(cm);
       }
@@ -727,6 +733,8 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     YamlMap o = top.map("output");
     scene.output.interval = o.number("interval", 0.0);
     if (scene.output.interval < 0) o.failAt("interval", "must be >= 0");
+    if (scene.output.interval > 0 && !std::isnormal(scene.output.interval))
+      o.failAt("interval", "must be 0 (every step) or at least 2.2e-308 (a subnormal interval is no time)");
     if (o.has("fields")) {
       for (const auto& f : o.strings("fields")) {
         const auto& all = allOutputFields();

@@ -233,6 +233,16 @@ TEST(SceneInput, AnEmptyValueIsLocatedAtItsKey) {
   EXPECT_TRUE(has(e, "case.yaml:11:3: probes.tip: missing required key 'type'")) << e;
 }
 
+TEST(SceneInput, SubnormalDensityOrOutputIntervalIsRefused) {
+  // density 1e-320 passed "> 0", the lumped masses underflowed to 0 and the run blamed a node for belonging
+  // to no element; an output interval of 1e-320 s made every step an output (fuzz findings).
+  std::string e = errorOf(drumScene(kTime), {"materials.film.density=1.0e-320"});
+  EXPECT_TRUE(has(e, "materials.film.density: must be > 0 and at least 2.2e-308")) << e;
+  e = errorOf(drumScene(kTime + "output: {interval: 1.0e-320}\n"));
+  EXPECT_TRUE(has(e, "output.interval: must be 0 (every step) or at least 2.2e-308")) << e;
+  EXPECT_EQ(errorOf(drumScene(kTime), {"materials.film.density=1.0e-300"}), "");
+}
+
 TEST(SceneInput, AChainOfSetsIsNotACycle) {
   // set_k = set_{k-1} plus node k+1: 22 sets deep used to be reported as a cycle.
   std::string yaml = drumScene(kTime) + "sets:\n  set0: {ids: [1], mesh: sheet}\n";

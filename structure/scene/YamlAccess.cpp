@@ -269,8 +269,8 @@ void checkDocument(const YAML::Node& root, const std::string& file) {
 YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
     : node_(node),
       file_(std::move(file)),
-      path_(std::move(path)) {  // YAML::Node is a handle: copies are cheap
-  if (node_) origin_ = node_;
+      path_(std::move(path)) {      // YAML::Node is a handle: copies are cheap
+  if (node_) origin_.reset(node_);  // reset: Node::operator= would assign into the referenced node
   if (!node_ || node_.IsNull()) {
     node_ = YAML::Node(YAML::NodeType::Map);
   } else if (!node_.IsMap()) {
@@ -406,7 +406,7 @@ YamlMap YamlMap::map(const std::string& key) const {
   if (child.node_.Mark().is_null())
     // An empty value (`generator:`) has no place in the file of its own: messages point at its key.
     for (const auto& kv : node_)
-      if (kv.first.IsScalar() && kv.first.Scalar() == key) child.origin_ = kv.first;
+      if (kv.first.IsScalar() && kv.first.Scalar() == key) child.origin_.reset(kv.first);
   return child;
 }
 

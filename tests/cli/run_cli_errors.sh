@@ -88,7 +88,7 @@ expect 0 "probe  centre" -- "$fsi" run coupled.yaml --out coupled-out --set time
 
 # A title that is not UTF-8 is refused before the run: nothing is written, no empty summary.json.
 scene latin1.yaml "" $'title: caf\xe9'
-expect 2 "latin1.yaml:1:8: title: text is not valid UTF-8" -- "$fsi" run latin1.yaml --out latin1-out
+expect 2 "latin1.yaml:1:11: the file is not valid UTF-8 (byte 0xE9)" -- "$fsi" run latin1.yaml --out latin1-out
 if [[ -e latin1-out/summary.json ]]; then
   echo "FAIL: latin1-out/summary.json written"
   failures=$((failures + 1))

@@ -84,6 +84,22 @@ logs="$work/logs"
 mkdir -p "$root" "$logs"
 
 mounts_under_root() { awk -v r="$root" '$2 == r || index($2, r "/") == 1 { print $2 }' /proc/self/mounts; }
+# kill_tree PID: PID and all its descendants (a phase that runs on this machine: debootstrap, tar, git)
+kill_tree() {
+  local -A kids=()
+  local p stat ppid queue=("$1") all=()
+  for p in /proc/[0-9]*; do
+    stat="$(cat "$p/stat" 2>/dev/null)" || continue
+    read -r _ ppid _ <<< "${stat##*) }"
+    kids[$ppid]+=" ${p#/proc/}"
+  done
+  while [ ${#queue[@]} -gt 0 ]; do
+    all+=("${queue[0]}")
+    # shellcheck disable=SC2206 # the list of child pids splits on spaces
+    queue=("${queue[@]:1}" ${kids[${queue[0]}]:-})
+  done
+  kill -s TERM "${all[@]}" 2>/dev/null || true
+}
 kill_chroot_processes() {
   local p sig pids
   for sig in TERM KILL; do
@@ -106,6 +122,7 @@ unmount_all() {
 cleanup() {
   local rc=$?
   trap - EXIT INT TERM
+  [ -n "${phase_pid:-}" ] && kill_tree "$phase_pid"
   kill_chroot_processes
   unmount_all
   if [ -n "$(mounts_under_root)" ]; then
@@ -122,8 +139,8 @@ cleanup() {
   exit $rc
 }
 trap cleanup EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
+trap 'say "interrupted (SIGINT)"; exit 130' INT
+trap 'say "terminated (SIGTERM)"; exit 143' TERM
 
 # Our own git calls may run as root on a checkout owned by another user (CI through sudo): a private global
 # config that trusts it, and nothing from the caller's config.
@@ -137,7 +154,12 @@ phase() {
   local name=$1 log=$2 t0=$SECONDS rc=0
   shift 2
   say "$name ..."
-  "$@" 2>&1 | stamp > "$log" || rc=$?
+  # In the background and waited for: a signal to this script runs the cleanup at once (bash defers traps
+  # while a foreground command runs), which stops the phase and unmounts before a CI's kill grace ends.
+  ( "$@" 2>&1 < /dev/null | stamp > "$log" ) &
+  phase_pid=$!
+  wait "$phase_pid" || rc=$?
+  phase_pid=
   if [ $rc -ne 0 ]; then
     say "$name FAILED (exit code $rc) after $((SECONDS - t0)) s; the end of $log:"
     tail -n 60 "$log"

@@ -300,7 +300,15 @@ YAML::Node YamlMap::require(const std::string& key) const {
 }
 
 YAML::Node YamlMap::required(const std::string& key) const {
-  return require(key);
+  const YAML::Node n = require(key);
+  if (n.IsNull()) {
+    // `nodes:` with nothing after it: a null value has no place in the file of its own, so name its key's.
+    YAML::Node where = node_;
+    for (const auto& kv : node_)
+      if (kv.first.IsScalar() && kv.first.Scalar() == key) where.reset(kv.first);
+    throw InputError(locate(file_, where, childPath(key)) + ": no value given");
+  }
+  return n;
 }
 
 YAML::Node YamlMap::raw(const std::string& key) const {

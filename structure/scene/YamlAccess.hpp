@@ -63,8 +63,9 @@ class YamlMap {
   std::vector<long> integers(const std::string& key, IntRange range = {}) const;
   std::vector<std::string> strings(const std::string& key) const;
   YamlMap map(const std::string& key) const;
-  YAML::Node raw(const std::string& key) const;       ///< marks the key as used; an invalid node when absent
-  YAML::Node required(const std::string& key) const;  ///< marks the key as used; located error when absent
+  YAML::Node raw(const std::string& key) const;  ///< marks the key as used; an invalid node when absent
+  YAML::Node required(
+      const std::string& key) const;  ///< marks the key as used; located error when absent or empty
   std::string childPath(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
   /// Throws unless every key of the mapping was read; the message lists valid keys and a suggestion.

@@ -231,6 +231,8 @@ TEST(SceneInput, AnEmptyValueIsLocatedAtItsKey) {
   // "case.yaml: probes.tip: ..." (found by the fuzz test).
   const std::string e = errorOf(drumScene(kTime + "probes:\n  tip:\n"));
   EXPECT_TRUE(has(e, "case.yaml:11:3: probes.tip: missing required key 'type'")) << e;
+  const std::string f = errorOf(drumScene(kTime + "probes:\n  tip:\n    type: displacement\n    nodes:\n"));
+  EXPECT_TRUE(has(f, "case.yaml:13:5: probes.tip.nodes: no value given")) << f;
 }
 
 TEST(SceneInput, SubnormalDensityOrOutputIntervalIsRefused) {

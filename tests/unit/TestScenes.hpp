@@ -1,9 +1,17 @@
 #pragma once
 // Scene text shared by several tests: a 1 m square film (8x8 cross-pattern squares) clamped on its edges.
 
+#include <filesystem>
 #include <string>
 
 namespace fsi::test {
+
+/// An empty output folder for one test under the build tree (per test, so parallel ctest runs do not share).
+inline std::filesystem::path outDir(const std::string& name) {
+  const std::filesystem::path d = std::filesystem::path(FSI_BINARY_DIR) / "test-output" / name;
+  std::filesystem::remove_all(d);
+  return d;
+}
 
 inline std::string drumScene(const std::string& extra) {
   return std::string(R"(materials:

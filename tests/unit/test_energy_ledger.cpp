@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "TestScenes.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
@@ -23,11 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path outDir(const std::string& name) {
-  const fs::path d = fs::path(FSI_BINARY_DIR) / "test-output" / name;
-  fs::remove_all(d);
-  return d;
-}
+using fsi::test::outDir;
 
 std::string replaceOnce(std::string s, const std::string& from, const std::string& to) {
   const auto at = s.find(from);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "TestScenes.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Generators.hpp"
@@ -15,11 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path outDir(const std::string& name) {
-  const fs::path d = fs::path(FSI_BINARY_DIR) / "test-output" / name;
-  fs::remove_all(d);
-  return d;
-}
+using fsi::test::outDir;
 
 RunResult runCase(const std::string& scene, const std::vector<std::string>& sets, const std::string& name) {
   Scene s = loadScene(fs::path(FSI_SOURCE_DIR) / "cases/structure" / scene / "scene.yaml", sets);

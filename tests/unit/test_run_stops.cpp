@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 
+#include "TestScenes.hpp"
 #include "structure/integrate/DynamicRelaxation.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/run/Simulation.hpp"
@@ -24,11 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path outDir(const std::string& name) {
-  const fs::path d = fs::path(FSI_BINARY_DIR) / "test-output" / name;
-  fs::remove_all(d);
-  return d;
-}
+using fsi::test::outDir;
 
 std::string caseText(const std::string& name) {
   std::ifstream in(fs::path(FSI_SOURCE_DIR) / "cases/structure" / name / "scene.yaml");

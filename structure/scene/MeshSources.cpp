@@ -4,6 +4,7 @@
 
 #include "structure/io/GmshReader.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/parafoil/ParafoilScene.hpp"
 #include "structure/scene/Generators.hpp"
 
 namespace fsi::structure {
@@ -60,10 +61,14 @@ MeshData located(const YamlMap& g, Fn fn, const Params& p, const std::string& na
   }
 }
 
-MeshData generate(const YamlMap& g, const std::string& name) {
+MeshData generate(const YamlMap& g, const std::string& name, const std::filesystem::path& sceneDir) {
   const std::string type =
-      g.choice("type", {"rectangle", "disc", "sphere_octant", "cable_chain", "strip", "pillow"});
+      g.choice("type", {"rectangle", "disc", "sphere_octant", "cable_chain", "strip", "pillow", "parafoil"});
   {
+    if (type == "parafoil") {
+      const auto p = parafoil::readParafoilParams(g, sceneDir);
+      return located(g, parafoil::buildParafoil, p, name);
+    }
     if (type == "rectangle") {
       auto p = rectangleParams(g);
       g.finish({"type", "size", "divisions", "center", "pattern"});
@@ -124,7 +129,7 @@ MeshData meshFromScene(const YamlMap& entry, const std::string& name, const std:
       throw InputError(locate(entry.file(), entry.raw("file"), entry.childPath("file")) + ": " + e.what());
     }
   }
-  return generate(entry.map("generator"), name);
+  return generate(entry.map("generator"), name, sceneDir);
 }
 
 }  // namespace fsi::structure

@@ -42,9 +42,7 @@ sys.exit(0 if facets(sys.argv[1]) == facets(sys.argv[2]) else 1)
 PY
 
 if [ "$OPENFOAM" = openfoam ]; then
-  # shellcheck disable=SC1091
-  set +u  # OpenFOAM's bashrc reads unset variables
-  source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1 || true
+  export WM_PROJECT_DIR=/usr/share/openfoam  # Debian's OpenFOAM finds its etc/ there (as in tests/adapter)
   surfaceCheck gen/wing.stl > check.log 2>&1 || { tail -20 check.log; fail "surfaceCheck failed"; }
   grep -q "Surface is closed" check.log || { grep -iE "open|illegal|edges" check.log; fail "STL not closed"; }
 fi

@@ -173,18 +173,16 @@ bool CentralDifference::step(double limitTime, bool monitor) {
   // reaction is normal to the plane, so its work is that of removing the normal velocity.
   for (std::size_t j = 0; j < constraints_.sliders.size(); ++j) {
     const PlaneSlider& s = constraints_.sliders[j];
-    double* vv3 = v + 3 * s.node;
-    double* xx = x + 3 * s.node;
+    double* vs = v + 3 * s.node;
+    const double vCur[3] = {vs[0], vs[1], vs[2]};
+    s.project(vs, x + 3 * s.node, dtNext);
     const double mi = m[s.node];
-    const double vn = vv3[0] * s.normal[0] + vv3[1] * s.normal[1] + vv3[2] * s.normal[2];
     for (int k = 0; k < 3; ++k) {
-      const double vOld = sliderOld_[3 * j + k], vCur = vv3[k], vNew = vCur - vn * s.normal[k];
-      replace(3 * s.node + k, mi, vOld, vCur, vNew);
-      const double rDelta = mi * (1.0 + 0.5 * a * dtAvg) * (vNew - vCur);
+      const double vOld = sliderOld_[3 * j + k], vNew = vs[k];
+      replace(3 * s.node + k, mi, vOld, vCur[k], vNew);
+      const double rDelta = mi * (1.0 + 0.5 * a * dtAvg) * (vNew - vCur[k]);
       reactOld += 0.5 * rDelta * vOld;
       reactNew += 0.5 * rDelta * vNew;
-      vv3[k] = vNew;
-      xx[k] -= dtNext * vn * s.normal[k];
     }
   }
 

@@ -158,12 +158,8 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
           N.v[d] = (cv * N.v[d] + cr * R / mass_[d / 3]) * free_[d];
           N.x[d] += N.v[d];
         }
-        for (const PlaneSlider& sl : constraints_.sliders) {
-          double* vv = &N.v[3 * sl.node];
-          double* xx = &N.x[3 * sl.node];
-          const double vn = vv[0] * sl.normal[0] + vv[1] * sl.normal[1] + vv[2] * sl.normal[2];
-          for (int k = 0; k < 3; ++k) vv[k] -= vn * sl.normal[k], xx[k] -= vn * sl.normal[k];
-        }
+        for (const PlaneSlider& sl : constraints_.sliders)
+          sl.project(&N.v[3 * sl.node], &N.x[3 * sl.node], 1.0);
         fresh = false;
         forces(lf);
 

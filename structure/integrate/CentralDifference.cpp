@@ -45,11 +45,13 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
   recordInitialStrain();
 }
 
-void CentralDifference::recordInitialStrain() {
+double CentralDifference::recordInitialStrain() {
   // A separate evaluation: the steps' own force evaluations stay exactly those of a run without it (the
   // kernels that sum the energy may round differently).
-  ledger_.initialStrain = evaluateEffects(model_.nodes, effects_, time_, 1.0, true).strainEnergy;
+  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, true);
+  ledger_.initialStrain = ctx.strainEnergy;
   ledger_.updateSupplied();
+  return ctx.minStableDt;
 }
 
 double CentralDifference::computeForces(bool withEnergy) {
@@ -231,31 +233,35 @@ void CentralDifference::restore(const std::vector<double>& x, const std::vector<
   dt_ = dt;
   steps_ = steps;
   ledger_ = ledgerFrom(halfVelocityEnergy(model_.nodes));
-  recordInitialStrain();
+  // The current strain energy and step estimate are those of the restored state, not of the state left.
+  stableDt_ = recordInitialStrain();
+  ledger_.strain = ledger_.initialStrain;
 }
 
-CentralDifference::Checkpoint CentralDifference::checkpoint() const {
-  Checkpoint c;
+StateSnapshot CentralDifference::checkpoint() const {
+  StateSnapshot c;
   checkpoint(c);
   return c;
 }
 
-void CentralDifference::checkpoint(Checkpoint& c) const {
+void CentralDifference::checkpoint(StateSnapshot& c) const {
   c.x.assign(model_.nodes.x.begin(), model_.nodes.x.end());
   c.v.assign(model_.nodes.v.begin(), model_.nodes.v.end());
   c.time = time_;
   c.dt = dt_;
-  c.steps = steps_;
+  c.step = steps_;
   c.ledger = ledger_;
+  c.stableDt = stableDt_;
 }
 
-void CentralDifference::restore(const Checkpoint& c) {
+void CentralDifference::restore(const StateSnapshot& c) {
   model_.nodes.x = c.x;
   model_.nodes.v = c.v;
   time_ = c.time;
   dt_ = c.dt;
-  steps_ = c.steps;
+  steps_ = c.step;
   ledger_ = c.ledger;
+  stableDt_ = c.stableDt;
 }
 
 }  // namespace fsi::structure

@@ -9,7 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "structure/run/Interrupt.hpp"
+#include "structure/run/StopReason.hpp"
+#include "structure/run/StopToken.hpp"
 #include "structure/scene/Scene.hpp"
 
 namespace fsi::structure {
@@ -18,10 +19,10 @@ struct RunOptions {
   std::filesystem::path outDir;
   bool quiet = false;
   double progressSeconds = 2.0;  ///< wall time between progress lines
+  /// A request on it stops the run cleanly (honoured during set-up, at every step and every DR iteration);
+  /// none: the run cannot be stopped from outside.
+  const StopToken* stop = nullptr;
 };
-
-enum class StopReason { EndTime, Static, NotConverged, Unstable, Interrupted };
-std::string toString(StopReason r);
 
 struct RunResult {
   StopReason reason = StopReason::EndTime;
@@ -29,14 +30,13 @@ struct RunResult {
   nlohmann::json summary;
   std::string diagnosis;            ///< what stopped the run (unstable, interrupted, not converged)
   std::filesystem::path stateFile;  ///< last_good_state.h5 / interrupted_state.h5 when one was written
-  int exitCode() const;
+  int exitCode() const { return structure::exitCode(reason); }
 };
 
 /// Evaluates every probe of the scene at the model's current state (forces must be current for reactions).
 std::map<std::string, double> evaluateProbes(const Scene& scene);
 
-/// Runs to the end (or static state, instability, interrupt); writes results into options.outDir. An
-/// interrupt request (Interrupt.hpp) is honoured during set-up, at every step and every DR iteration.
+/// Runs to the end (or static state, instability, a stop request); writes results into options.outDir.
 RunResult runSimulation(Scene& scene, const RunOptions& options);
 
 /// Dynamic relaxation of a `solver: {type: dynamic_relaxation}` scene (runSimulation dispatches to it).

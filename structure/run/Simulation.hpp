@@ -1,7 +1,8 @@
 #pragma once
 // Simulation: runs a Scene with the central-difference integrator and does everything around the step loop:
 // output frames (HDF5 + XDMF), probes, energy monitoring, until-static detection, instability diagnosis with
-// the last good state kept on disk, Ctrl-C handling, and summary.json.
+// the last good state kept on disk, stop requests (RunOptions::stop), and summary.json; what it shares with
+// the dynamic-relaxation run is in RunCommon.
 
 #include <filesystem>
 #include <functional>

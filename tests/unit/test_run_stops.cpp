@@ -119,6 +119,25 @@ TEST(RunStops, AStopRequestStopsOnlyTheRunsGivenItsToken) {
   EXPECT_TRUE(other.requested());
 }
 
+// A state that cannot be written (a folder stands where the temporary file goes): the run still ends with its
+// report, which says why. The old explicit run replaced the diagnosis after the failed write and lost the
+// reason ("...; the state could not be saved").
+TEST(RunStops, AStateThatCannotBeSavedIsReportedWithTheReason) {
+  StopToken stop;
+  stop.request();
+  Scene s = loadScene(fs::path(FSI_SOURCE_DIR) / "cases/structure/hencky/scene.yaml");
+  const fs::path out = outDir("stops-unsaved-state");
+  fs::create_directories(out / "interrupted_state.h5.tmp" / "blocker");
+  const RunResult r = run(s, out, &stop);
+  EXPECT_EQ(r.reason, StopReason::Interrupted);
+  EXPECT_TRUE(r.stateFile.empty());
+  EXPECT_FALSE(fs::exists(out / "interrupted_state.h5"));
+  EXPECT_NE(r.diagnosis.find("before the first step"), std::string::npos) << r.diagnosis;
+  EXPECT_NE(r.diagnosis.find("could not be saved: writeState: cannot create file"), std::string::npos)
+      << r.diagnosis;
+  EXPECT_FALSE(summaryOf(out).contains("state_file"));
+}
+
 // A request arriving while the loop runs (from another thread here, from SIGINT in `fsi run`).
 TEST(RunStops, InterruptDuringTheLoopKeepsTheCurrentState) {
   StopToken stop;

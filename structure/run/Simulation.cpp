@@ -3,13 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "structure/io/ResultsWriter.hpp"
-#include "structure/io/SceneFrames.hpp"
-#include "structure/io/StateFile.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
 #include "structure/run/RunCommon.hpp"
 
@@ -43,35 +39,6 @@ double reduceValues(const std::vector<double>& vals, ProbeSpec::Reduce r) {
   return 0.0;
 }
 }  // namespace
-
-std::string toString(StopReason r) {
-  switch (r) {
-    case StopReason::EndTime:
-      return "end_time";
-    case StopReason::Static:
-      return "static";
-    case StopReason::NotConverged:
-      return "not_converged";
-    case StopReason::Unstable:
-      return "unstable";
-    case StopReason::Interrupted:
-      return "interrupted";
-  }
-  return "?";
-}
-
-int RunResult::exitCode() const {
-  switch (reason) {
-    case StopReason::Unstable:
-      return 3;
-    case StopReason::Interrupted:
-      return 130;
-    case StopReason::NotConverged:
-      return 4;
-    default:
-      return 0;
-  }
-}
 
 std::map<std::string, double> evaluateProbes(const Scene& scene) {
   const Model& model = *scene.model;
@@ -142,13 +109,9 @@ std::map<std::string, double> evaluateProbes(const Scene& scene) {
 
 namespace {
 
-StateSnapshot explicitState(const CentralDifference& cd, const Nodes& N) {
-  StateSnapshot s;
-  s.time = cd.time();
-  s.step = cd.steps();
-  s.dt = cd.lastDt();
-  s.x = N.x;
-  s.v = N.v;
+// The state an explicit run keeps when it stops, with its energies for whoever reads the file.
+StateSnapshot explicitState(const CentralDifference& cd) {
+  StateSnapshot s = cd.checkpoint();
   const EnergyLedger& E = cd.energy();
   s.scalars["kinetic_energy"] = E.kinetic;
   s.scalars["strain_energy"] = E.strain;
@@ -162,9 +125,7 @@ StateSnapshot explicitState(const CentralDifference& cd, const Nodes& N) {
 
 RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   if (scene.solver.type == SolverControl::Type::DynamicRelaxation) return runRelaxation(scene, opt);
-  using Clock = std::chrono::steady_clock;
-  namespace fs = std::filesystem;
-  fs::create_directories(opt.outDir);
+  std::filesystem::create_directories(opt.outDir);
   Model& model = *scene.model;
   Nodes& N = model.nodes;
   const TimeControl& tc = scene.time;
@@ -172,7 +133,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   RunResult result;
 
   if (!opt.quiet) {
-    fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
+    printSceneLine(scene);
     fmt::print("model  {} nodes, {} membrane triangles, {} cables; effects: ", N.count, model.membranes.count,
                model.cables.count);
     for (std::size_t i = 0; i < scene.enabledEffects.size(); ++i)
@@ -185,29 +146,24 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
     std::fflush(stdout);
   }
 
-  SceneFrames frames(scene, opt.outDir / "results.h5");
-  frames.write(0.0, 0);
+  RunOutput output(scene, opt);
   std::vector<std::vector<double>> energyRows(11);
-  std::vector<std::string> probeNames;
-  for (const auto& p : scene.probes) probeNames.push_back(p.name);
-  std::vector<std::vector<double>> probeRows(probeNames.size() + 1);
 
   // The last state that passed a check (its ledger too: the summary of an unstable run reports it).
-  CentralDifference::Checkpoint good;
+  StateSnapshot good;
   cd.checkpoint(good);
   const double tEnd = tc.endTime;
   double nextOutput = scene.output.interval > 0 ? scene.output.interval : tEnd;
   int staticHits = 0;
   bool nonFinite = false;
   double createdAtStop = -1;  // >= 0: the check at an output or the end stopped the run
-  const auto wall0 = Clock::now();
-  auto lastPrint = wall0;
+  RunClock clock(opt.progressSeconds);
   bool printNow = false;
 
   while (true) {
     // Polled before each step, so that a request pending from the set-up (or from before the run) stops
     // at once; it is never cleared here.
-    if (interruptRequested()) {
+    if (stopRequested(opt)) {
       result.reason = StopReason::Interrupted;
       break;
     }
@@ -267,24 +223,18 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       }
     }
     if (atOutput && scene.output.interval > 0 && !atEnd) {
-      frames.write(cd.time(), cd.steps());
-      auto probes = evaluateProbes(scene);
-      probeRows[0].push_back(cd.time());
-      for (std::size_t i = 0; i < probeNames.size(); ++i) probeRows[i + 1].push_back(probes[probeNames[i]]);
+      output.frame(cd.time(), cd.steps());
+      output.probeRow(cd.time(), evaluateProbes(scene));
       nextOutput += scene.output.interval;
-      printNow = true;  // a progress line per output frame too (throttled below), so short runs show progress
+      printNow = true;  // a progress line per output frame too (throttled), so short runs show progress
     }
     if (atEnd) {
       result.reason = tc.untilStatic ? StopReason::NotConverged : StopReason::EndTime;
       break;
     }
-    if (!opt.quiet && (printNow || (cd.steps() & 255) == 0)) {
-      const auto now = Clock::now();
-      const double since = std::chrono::duration<double>(now - lastPrint).count();
-      if (since >= opt.progressSeconds || (printNow && since >= 0.02 * opt.progressSeconds)) {
-        lastPrint = now;
-        const double wall = std::chrono::duration<double>(now - wall0).count();
-        const double eta = wall * (tEnd - cd.time()) / std::max(cd.time(), 1e-300);
+    if (!opt.quiet && (printNow || (cd.steps() & 255) == 0)) {  // the clock read every 256 steps at most
+      if (clock.progressDue(printNow)) {
+        const double eta = clock.seconds() * (tEnd - cd.time()) / std::max(cd.time(), 1e-300);
         fmt::print(
             "step {:>9}  t {:.5g}/{:.5g} s  dt {:.3g} s  KE {:.4g} J  U {:.4g} J  {}  {:.0f} s left{}\n",
             cd.steps(), cd.time(), tEnd, cd.lastDt(), E.kinetic, E.strain,
@@ -296,45 +246,34 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       printNow = false;
     }
   }
-  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+  const double wall = clock.seconds();
   const long steps = cd.steps();
 
   if (result.reason == StopReason::Unstable) {
-    result.diagnosis = diagnoseInstability(scene, cd, good.steps, good.time, nonFinite, createdAtStop);
+    result.diagnosis = diagnoseInstability(scene, cd, good.step, good.time, nonFinite, createdAtStop);
     // Keep the last good state: on disk as a restartable state and as the last frame of the results.
     cd.restore(good);
     cd.evaluateForces(true);
-    writeStopState(opt, explicitState(cd, N), result);
-    if (!result.stateFile.empty()) result.diagnosis += " Saved in " + result.stateFile.string() + ".";
+    saveStopState(opt, explicitState(cd), result);
   } else {
     cd.evaluateForces(true);  // current forces for reactions, current strain energy for the summary
     if (result.reason == StopReason::Interrupted) {
-      writeStopState(opt, explicitState(cd, N), result);
       result.diagnosis =
           steps == 0 ? fmt::format("stopped during set-up, before the first step (t = {:.6g} s)", cd.time())
                      : fmt::format("stopped at step {} (t = {:.6g} s)", steps, cd.time());
-      result.diagnosis += result.stateFile.empty() ? "; the state could not be saved"
-                                                   : "; state saved in " + result.stateFile.string();
+      saveStopState(opt, explicitState(cd), result);
     }
   }
-  frames.write(cd.time(), cd.steps());
+  output.frame(cd.time(), cd.steps());
   result.probes = evaluateProbes(scene);
-  probeRows[0].push_back(cd.time());
-  for (std::size_t i = 0; i < probeNames.size(); ++i)
-    probeRows[i + 1].push_back(result.probes[probeNames[i]]);
-  {
-    std::vector<std::string> cols{"time"};
-    cols.insert(cols.end(), probeNames.begin(), probeNames.end());
-    frames.writer().writeTable("probes", cols, probeRows);
-    frames.writer().writeTable("energy",
-                               {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping",
-                                "balance_error", "dt", "kinetic_product", "energy_growth", "energy_created"},
-                               energyRows);
-  }
-  frames.writer().close();
+  output.probeRow(cd.time(), result.probes);
+  output.table("energy",
+               {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping",
+                "balance_error", "dt", "kinetic_product", "energy_growth", "energy_created"},
+               energyRows);
+  output.close();
 
   const EnergyLedger& E = cd.energy();
-  nlohmann::json s = summaryHead(scene, result);
   const long elements = model.membranes.count + model.cables.count;
   nlohmann::json st;
   st["steps"] = steps;
@@ -359,17 +298,12 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   st["added_mass"] = scene.massScaling.addedMass;
   st["added_mass_fraction"] = scene.massScaling.addedFraction();
   if (tc.untilStatic) st["converged"] = result.reason == StopReason::Static;
-  s["stats"] = st;
-  writeSummary(s, result, opt);
-
-  if (!opt.quiet) {
-    fmt::print(
-        "stop   {} after {} steps, t = {:.6g} s, {:.3g} s wall, {:.3g} M element updates/s, energy "
-        "balance error {:.2e}\n",
-        toString(result.reason), steps, cd.time(), wall,
-        1e-6 * st["element_updates_per_second"].get<double>(), E.balanceError());
-  }
-  printProbesAndDiagnosis(result, opt.quiet);
+  const std::string stopLine = fmt::format(
+      "stop   {} after {} steps, t = {:.6g} s, {:.3g} s wall, {:.3g} M element updates/s, energy balance "
+      "error {:.2e}",
+      toString(result.reason), steps, cd.time(), wall, 1e-6 * st["element_updates_per_second"].get<double>(),
+      E.balanceError());
+  finishRun(scene, result, opt, st, stopLine);
   return result;
 }
 

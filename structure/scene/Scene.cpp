@@ -467,7 +467,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
       const std::string damping = sv.choice("damping", {"kinetic", "viscous"}, "kinetic");
       rs.damping =
           damping == "kinetic" ? RelaxationSettings::Damping::Kinetic : RelaxationSettings::Damping::Viscous;
-      const std::string mass = sv.choice("mass", {"gerschgorin", "stress", "rezaiee_pajand"}, "gerschgorin");
+      const std::string mass = sv.choice("mass", fictitiousMassRuleNames(), toString(rs.mass));
       rs.mass = fictitiousMassRuleFromName(mass);
       const std::string coef = sv.choice("coefficient", {"underwood", "rezaiee_pajand"}, "underwood");
       rs.coefficient = coef == "underwood" ? RelaxationSettings::Coefficient::Underwood

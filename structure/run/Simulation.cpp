@@ -15,35 +15,6 @@
 
 namespace fsi::structure {
 
-namespace {
-double componentOf(const double* u, int component) {
-  if (component < 3) return u[component];
-  return std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-}
-
-double reduceValues(const std::vector<double>& vals, ProbeSpec::Reduce r) {
-  switch (r) {
-    case ProbeSpec::Reduce::Value:
-      return vals.front();
-    case ProbeSpec::Reduce::Mean: {
-      double s = 0;
-      for (double v : vals) s += v;
-      return s / double(vals.size());
-    }
-    case ProbeSpec::Reduce::Max:
-      return *std::max_element(vals.begin(), vals.end());
-    case ProbeSpec::Reduce::Min:
-      return *std::min_element(vals.begin(), vals.end());
-    case ProbeSpec::Reduce::Sum: {
-      double s = 0;
-      for (double v : vals) s += v;
-      return s;
-    }
-  }
-  return 0.0;
-}
-}  // namespace
-
 std::string toString(StopReason r) {
   switch (r) {
     case StopReason::EndTime:
@@ -73,72 +44,7 @@ int RunResult::exitCode() const {
   }
 }
 
-std::map<std::string, double> evaluateProbes(const Scene& scene) {
-  const Model& model = *scene.model;
-  const Nodes& N = model.nodes;
-  std::map<std::string, double> out;
-  MembraneStressField stress;
-  bool haveStress = false;
-  for (const ProbeSpec& p : scene.probes) {
-    std::vector<double> vals;
-    switch (p.type) {
-      case ProbeSpec::Type::Position:
-        for (int n : p.nodes) {
-          double r[3];
-          for (int k = 0; k < 3; ++k) r[k] = N.x[3 * n + k] - (p.component == 4 ? p.center[k] : 0.0);
-          vals.push_back(componentOf(r, p.component == 4 ? 3 : p.component));
-        }
-        break;
-      case ProbeSpec::Type::Displacement:
-        for (int n : p.nodes) {
-          const double u[3] = {N.x[3 * n] - N.X[3 * n], N.x[3 * n + 1] - N.X[3 * n + 1],
-                               N.x[3 * n + 2] - N.X[3 * n + 2]};
-          if (p.component == 4) {
-            double r = 0, r0 = 0;
-            for (int k = 0; k < 3; ++k) {
-              r += std::pow(N.x[3 * n + k] - p.center[k], 2);
-              r0 += std::pow(N.X[3 * n + k] - p.center[k], 2);
-            }
-            vals.push_back(std::sqrt(r) - std::sqrt(r0));
-          } else {
-            vals.push_back(componentOf(u, p.component));
-          }
-        }
-        break;
-      case ProbeSpec::Type::Reaction: {
-        double r[3] = {0, 0, 0};
-        for (int n : p.nodes)
-          for (int k = 0; k < 3; ++k) r[k] += N.fint[3 * n + k] - N.fext[3 * n + k];
-        vals.push_back(componentOf(r, p.component));
-        break;
-      }
-      case ProbeSpec::Type::Volume: {
-        // Divergence theorem about `center`: symmetry planes through the centre add nothing.
-        double v = 0;
-        for (int e : p.triangles) {
-          const int* c = &model.membranes.conn[3 * e];
-          double a[3], b[3], d[3];
-          for (int k = 0; k < 3; ++k) {
-            a[k] = N.x[3 * c[0] + k] - p.center[k];
-            b[k] = N.x[3 * c[1] + k] - p.center[k];
-            d[k] = N.x[3 * c[2] + k] - p.center[k];
-          }
-          v += a[0] * (b[1] * d[2] - b[2] * d[1]) + a[1] * (b[2] * d[0] - b[0] * d[2]) +
-               a[2] * (b[0] * d[1] - b[1] * d[0]);
-        }
-        vals.push_back(v / 6.0);
-        break;
-      }
-      case ProbeSpec::Type::Stress:
-        if (!haveStress && scene.membrane) scene.membrane->evaluate(N.x.data(), stress), haveStress = true;
-        for (int e : p.triangles)
-          vals.push_back(stress.principal[2 * e + (p.quantity == "min_principal" ? 1 : 0)]);
-        break;
-    }
-    out[p.name] = reduceValues(vals, p.reduce);
-  }
-  return out;
-}
+// evaluateProbes: structure/probes/EvaluateProbes.cpp.
 
 namespace {
 

@@ -1,8 +1,8 @@
 #pragma once
 // The registry of probe kinds: every kind is one entry {name, keys, description, parse, evaluate}. The valid
 // `type:` values of a probe (and their "did you mean") come from this table. Adding a probe = one file with
-// its parse and evaluate functions + one line in ProbeRegistry.cpp (docs/ARCHITECTURE.md, "How to add a
-// probe"). Probes are evaluated at output times only, never in the step loop.
+// its parse and evaluate functions + one registration in ProbeRegistry.cpp (docs/ARCHITECTURE.md, "How to add
+// a probe"). Probes are evaluated at output times only, never in the step loop.
 
 #include <map>
 #include <string>
@@ -55,12 +55,5 @@ ProbeReduce readReduce(const YamlMap& entry, const std::vector<std::string>& all
 
 /// The x, y or z component or the magnitude of a vector (Radial is the caller's: it needs a centre).
 double vectorComponent(const double* v, ProbeComponent c);
-
-// One function per probe file, each returning its registry entry.
-ProbeKind displacementProbe();
-ProbeKind positionProbe();
-ProbeKind reactionProbe();
-ProbeKind volumeProbe();
-ProbeKind stressProbe();
 
 }  // namespace fsi::structure

@@ -7,8 +7,14 @@
 
 namespace fsi::structure {
 
+// The entries, one per probe file. Register a new probe here: its function below and in the table.
+ProbeKind displacementProbe();
+ProbeKind positionProbe();
+ProbeKind reactionProbe();
+ProbeKind volumeProbe();
+ProbeKind stressProbe();
+
 const std::vector<ProbeKind>& probeKinds() {
-  // Register a new probe here (and declare its function in ProbeKinds.hpp).
   static const std::vector<ProbeKind> kinds{displacementProbe(), positionProbe(), reactionProbe(),
                                             volumeProbe(), stressProbe()};
   return kinds;

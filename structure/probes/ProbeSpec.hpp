@@ -26,10 +26,9 @@ enum class ProbeReduce { Value, Mean, Max, Min, Sum };
 enum class StressQuantity { MaxPrincipal, MinPrincipal };
 
 struct ProbeSpec {
-  using Reduce = ProbeReduce;
   std::string name;
   const ProbeKind* kind = nullptr;  ///< its entry in probeKinds()
-  Reduce reduce = Reduce::Value;
+  ProbeReduce reduce = ProbeReduce::Value;
   std::vector<int> nodes;      ///< model node indices
   std::vector<int> triangles;  ///< model membrane element indices
   ProbeComponent component = ProbeComponent::X;

@@ -9,20 +9,6 @@ namespace fsi::structure {
 
 namespace {
 
-std::vector<Point3> points(const YamlMap& g, const std::string& key) {
-  const YAML::Node n = g.raw(key);
-  if (!n || !n.IsSequence() || n.size() < 2) g.failAt(key, "expected a list of at least 2 points [x, y, z]");
-  std::vector<Point3> out;
-  for (std::size_t i = 0; i < n.size(); ++i) {
-    const std::string p = fmt::format("{}[{}]", g.childPath(key), i);
-    if (!n[i].IsSequence() || n[i].size() != 3)
-      throw InputError(locate(g.file(), n[i], p) + ": expected [x, y, z]");
-    out.push_back(
-        {asNumber(n[i][0], g.file(), p), asNumber(n[i][1], g.file(), p), asNumber(n[i][2], g.file(), p)});
-  }
-  return out;
-}
-
 std::vector<int> toInts(const std::vector<long>& v) {
   return std::vector<int>(v.begin(), v.end());
 }
@@ -48,17 +34,6 @@ DiscParams discParams(const YamlMap& g) {
   return p;
 }
 
-// Generator messages name the parameter; add where in the scene it came from. YAML errors are already
-// located and pass through unchanged.
-template <class Params, class Fn>
-MeshData located(const YamlMap& g, Fn fn, const Params& p, const std::string& name) {
-  try {
-    return fn(p, name);
-  } catch (const InputError& e) {
-    throw InputError(locate(g.file(), g.node(), g.path()) + ": " + e.what());
-  }
-}
-
 // ---------------------------------------------------------------- one reader per generator
 
 // The keys of each generator entry (the registry lists them; the readers check them).
@@ -76,13 +51,13 @@ const std::vector<std::string> kPillowKeys{"type",   "shape",   "size",   "divis
 MeshData rectangleFrom(const YamlMap& g, const std::string& name) {
   auto p = rectangleParams(g);
   g.finish(kRectangleKeys);
-  return located(g, rectangle, p, name);
+  return locatedGenerate(g, rectangle, p, name);
 }
 
 MeshData discFrom(const YamlMap& g, const std::string& name) {
   auto p = discParams(g);
   g.finish(kDiscKeys);
-  return located(g, disc, p, name);
+  return locatedGenerate(g, disc, p, name);
 }
 
 MeshData sphereOctantFrom(const YamlMap& g, const std::string& name) {
@@ -90,26 +65,26 @@ MeshData sphereOctantFrom(const YamlMap& g, const std::string& name) {
   p.radius = g.number("radius");
   p.divisions = int(g.integer("divisions"));
   g.finish(kSphereOctantKeys);
-  return located(g, sphereOctant, p, name);
+  return locatedGenerate(g, sphereOctant, p, name);
 }
 
 MeshData cableChainFrom(const YamlMap& g, const std::string& name) {
   CableChainParams p;
-  p.points = points(g, "points");
+  p.points = readPoints(g, "points");
   p.divisions = toInts(g.integers("divisions"));
   g.finish(kCableChainKeys);
-  return located(g, cableChain, p, name);
+  return locatedGenerate(g, cableChain, p, name);
 }
 
 MeshData stripFrom(const YamlMap& g, const std::string& name) {
   StripParams p;
-  p.path = points(g, "path");
+  p.path = readPoints(g, "path");
   p.divisions = toInts(g.integers("divisions"));
   p.width = g.vec3("width");
   p.across = int(g.integer("across", 1));
   p.pattern = g.choice("pattern", {"ruled", "alternating"}, "ruled");
   g.finish(kStripKeys);
-  return located(g, strip, p, name);
+  return locatedGenerate(g, strip, p, name);
 }
 
 // The keys of a pillow depend on its shape: those of the rectangle or of the disc generator.
@@ -123,13 +98,28 @@ MeshData pillowFrom(const YamlMap& g, const std::string& name) {
     p.disc = discParams(g);
     g.finish(kPillowDiscKeys);
   }
-  return located(g, pillow, p, name);
+  return locatedGenerate(g, pillow, p, name);
 }
 
 }  // namespace
 
+std::vector<std::array<double, 3>> readPoints(const YamlMap& g, const std::string& key) {
+  const YAML::Node n = g.raw(key);
+  if (!n || !n.IsSequence() || n.size() < 2) g.failAt(key, "expected a list of at least 2 points [x, y, z]");
+  std::vector<std::array<double, 3>> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const std::string p = fmt::format("{}[{}]", g.childPath(key), i);
+    if (!n[i].IsSequence() || n[i].size() != 3)
+      throw InputError(locate(g.file(), n[i], p) + ": expected [x, y, z]");
+    out.push_back(
+        {asNumber(n[i][0], g.file(), p), asNumber(n[i][1], g.file(), p), asNumber(n[i][2], g.file(), p)});
+  }
+  return out;
+}
+
 const std::vector<GeneratorKind>& generatorKinds() {
-  // Register a new generator here.
+  // Register a new generator here: a row, or for a generator in a file of its own `myShapeGenerator(),` (with
+  // `GeneratorKind myShapeGenerator();` declared above this function).
   static const std::vector<GeneratorKind> kinds{
       {"rectangle", kRectangleKeys, "flat rectangle, normal +z", rectangleFrom},
       {"disc", kDiscKeys, "flat disc of hexagonal rings, normal +z", discFrom},

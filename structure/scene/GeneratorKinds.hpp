@@ -4,9 +4,11 @@
 // this table. Adding a generator = one file with its geometry and its reader + one line in
 // GeneratorKinds.cpp (docs/ARCHITECTURE.md, "How to add a generator").
 
+#include <array>
 #include <string>
 #include <vector>
 
+#include "structure/model/Error.hpp"
 #include "structure/model/MeshData.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
@@ -25,5 +27,21 @@ const std::vector<GeneratorKind>& generatorKinds();
 
 /// Builds the mesh a `generator:` entry describes.
 MeshData generateMesh(const YamlMap& g, const std::string& meshName);
+
+// For the generators' readers.
+
+/// A list of at least 2 points [x, y, z] under `key`, with located errors.
+std::vector<std::array<double, 3>> readPoints(const YamlMap& g, const std::string& key);
+
+/// Runs the generator `fn(params, name)`. Its messages name the parameter; this adds where in the scene the
+/// entry is. YAML errors are already located and pass through unchanged.
+template <class Params, class Fn>
+MeshData locatedGenerate(const YamlMap& g, Fn fn, const Params& params, const std::string& name) {
+  try {
+    return fn(params, name);
+  } catch (const InputError& e) {
+    throw InputError(locate(g.file(), g.node(), g.path()) + ": " + e.what());
+  }
+}
 
 }  // namespace fsi::structure

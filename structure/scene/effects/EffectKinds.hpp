@@ -1,8 +1,9 @@
 #pragma once
 // The registry of the scene's `effects:`: every effect kind is one entry {name, keys, description, build}.
 // The valid names under `effects:` (and their "did you mean") come from this table, and each entry's keys
-// from its own file. Adding an effect = one file with its build function + one line in EffectRegistry.cpp
-// (docs/ARCHITECTURE.md, "How to add an effect"). Building runs once, at load time: no per-step cost.
+// from its own file. Adding an effect = one file with its build function + one registration in
+// EffectRegistry.cpp (docs/ARCHITECTURE.md, "How to add an effect"). Building runs once, at load time: no
+// per-step cost.
 
 #include <memory>
 #include <string>
@@ -48,13 +49,5 @@ const std::vector<EffectKind>& effectKinds();
 /// Builds the `effects:` section of the top-level map `top`; appends the names of the effects built to
 /// `enabled`.
 void buildEffects(const YamlMap& top, bool relaxation, EffectContext& ctx, std::vector<std::string>& enabled);
-
-// One function per effect file, each returning its registry entry.
-EffectKind massDampingEffect();
-EffectKind stiffnessDampingEffect();
-EffectKind bulkViscosityEffect();
-EffectKind gravityEffect();
-EffectKind pressureEffect();
-EffectKind nodalForcesEffect();
 
 }  // namespace fsi::structure

@@ -4,8 +4,15 @@
 
 namespace fsi::structure {
 
+// The entries, one per effect file. Register a new effect here: its function below and in the table.
+EffectKind massDampingEffect();
+EffectKind stiffnessDampingEffect();
+EffectKind bulkViscosityEffect();
+EffectKind gravityEffect();
+EffectKind pressureEffect();
+EffectKind nodalForcesEffect();
+
 const std::vector<EffectKind>& effectKinds() {
-  // Register a new effect here (and declare its function in EffectKinds.hpp).
   static const std::vector<EffectKind> kinds{massDampingEffect(),   stiffnessDampingEffect(),
                                              bulkViscosityEffect(), gravityEffect(),
                                              pressureEffect(),      nodalForcesEffect()};

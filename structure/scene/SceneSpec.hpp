@@ -1,13 +1,13 @@
 #pragma once
-// A scene file as read and validated, before anything is built from it: plain data plus, for the sections
-// that select parts of the model, their located YAML (selectors can only be checked against the built model,
-// so their builders read them: BuildConstraints.cpp, effects/, probes/, ReadCoupling.cpp).
+// A scene file as read and validated, before anything is built from it: plain data (title, materials,
+// meshes with their origin, solver, time, output). The sections that select parts of the model (sets,
+// constraints, effects, coupling, probes) are not in it: a selector can only be checked against the built
+// model, so their builders read them from the document (SetResolver, BuildConstraints, effects/,
+// ReadCoupling, probes/), through YamlMap, with located errors.
 //
 // Data flow (docs/ARCHITECTURE.md, "From scene file to run state"):
 //   YAML text --readSceneSpec--> SceneSpec --buildScene--> Scene (model, constraints, effects, probes,
 //   controls)
-
-#include <yaml-cpp/yaml.h>
 
 #include <filesystem>
 #include <string>

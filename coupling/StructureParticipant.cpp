@@ -81,8 +81,7 @@ void StructureParticipant::advanceTo(double t1) {
     const bool monitor = cd_->lastDt() == 0 || t1 - cd_->time() <= 1.5 * cd_->lastDt();
     lastStepMonitored_ = monitor;
     if (!cd_->step(t1, monitor))
-      throw StructureUnstable(structure::diagnoseInstability(scene_, *cd_, checkpoint_.steps,
-                                                             checkpoint_.time,
+      throw StructureUnstable(structure::diagnoseInstability(scene_, *cd_, checkpoint_.step, checkpoint_.time,
                                                              /*nonFinite=*/true));
   }
 }
@@ -152,7 +151,7 @@ void StructureParticipant::writeState(const std::filesystem::path& file,
                                       const std::map<std::string, std::vector<double>>& arrays) const {
   structure::StateSnapshot s;
   s.arrays = arrays;
-  const structure::CentralDifference::Checkpoint c = cd_->checkpoint();
+  const structure::StateSnapshot c = cd_->checkpoint();
   const auto E = c.ledger.values();
   s.arrays[kLedgerKey] = std::vector<double>(E.begin(), E.end());
   s.time = cd_->time();
@@ -181,7 +180,7 @@ std::map<std::string, std::vector<double>> StructureParticipant::readState(
       throw InputError(file.string() + ": " + kLedgerKey + " has " + std::to_string(L.size()) +
                        " values, expected " + std::to_string(nFields) +
                        " (a state written by another version)");
-    structure::CentralDifference::Checkpoint c = cd_->checkpoint();
+    structure::StateSnapshot c = cd_->checkpoint();
     std::array<double, nFields> values{};
     std::copy(L.begin(), L.end(), values.begin());
     c.ledger.setValues(values);

@@ -114,7 +114,7 @@ class StructureParticipant final : public StructureSolver {
   bool forces_ = false;  ///< the loads are nodal forces, not pressures
   int minSubcycles_ = 1;
   bool lastStepMonitored_ = false;  ///< the last structural step evaluated the strain energy
-  structure::CentralDifference::Checkpoint checkpoint_;
+  structure::StateSnapshot checkpoint_;
   std::unique_ptr<structure::SceneFrames> frames_;
   // Histories for /tables/energy and /tables/probes of the results file, column by column.
   std::vector<std::string> probeNames_;

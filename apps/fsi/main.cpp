@@ -28,6 +28,7 @@
 #include "coupling/mapping/MapCheck.hpp"
 #include "structure/io/MeshFileWriters.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/run/Interrupt.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
 #include "structure/scene/YamlAccess.hpp"
@@ -37,12 +38,16 @@ using namespace fsi::structure;
 
 namespace {
 
-// SIGINT asks a run to stop cleanly (exit 130 with the state saved). The handler is installed from the
+// SIGINT asks a run to stop cleanly (exit 130 with the state saved): the handler requests gStop, the token
+// every run of this program gets (RunOptions::stop). A constant-initialised static, so it exists before any
+// code runs. The handler is installed from the
 // executable's pre-initialisation array, before the shared libraries' static initialisers run, so that a
 // Ctrl-C from the first moments is a request, never a kill. Only the loader's mapping and relocation of the
 // libraries (a few tens of ms) precede it.
+StopToken gStop;
+
 extern "C" void fsiEarlyInterruptHandler(int, char**, char**) {
-  installInterruptHandler();
+  installInterruptHandler(gStop);
 }
 __attribute__((section(".preinit_array"), used)) void (*const fsiPreinit)(int, char**,
                                                                           char**) = fsiEarlyInterruptHandler;
@@ -59,7 +64,7 @@ void requireEndTime(const Scene& scene) {
 
 int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets,
                bool quiet) {
-  installInterruptHandler();  // (already installed before main; repeated in case a library replaced it)
+  installInterruptHandler(gStop);  // (already installed before main; repeated in case a library replaced it)
   Scene scene = loadScene(scenePath, sets);
   requireEndTime(scene);
   // An output directory that cannot be made is bad input too: say so before the run, not as a crash in it.
@@ -71,6 +76,7 @@ int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector
   RunOptions opt;
   opt.outDir = out;
   opt.quiet = quiet;
+  opt.stop = &gStop;
   const RunResult r = runSimulation(scene, opt);
   if (!quiet)
     fmt::print("results {}/results.xdmf (open in ParaView), summary {}/summary.json\n", out.string(),
@@ -110,6 +116,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
     RunOptions opt;
     opt.outDir = out / fmt::format("check{}", i);
     opt.quiet = quiet;
+    opt.stop = &gStop;  // a request stops this run and, below, every remaining one
     const RunResult r = runSimulation(scene, opt);
     if (r.reason == StopReason::Interrupted) {
       fmt::print("interrupted: the remaining checks were not run\n");
@@ -143,7 +150,7 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
                     const std::string& variant, int quadratureLevel, const std::vector<std::string>& sets) {
   // No run to stop cleanly here: Ctrl-C ends the program as usual (and one pressed during start-up does).
   std::signal(SIGINT, SIG_DFL);
-  if (interruptRequested()) return 130;
+  if (gStop.requested()) return 130;
   if (!sets.empty() && !fsi::coupling::isSceneFile(src) && !fsi::coupling::isSceneFile(dst))
     throw fsi::InputError("--set applies to a structure scene (SCENE.yaml), but neither side is one");
   if (quadratureLevel < 1)

@@ -45,11 +45,13 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
   recordInitialStrain();
 }
 
-void CentralDifference::recordInitialStrain() {
+double CentralDifference::recordInitialStrain() {
   // A separate evaluation: the steps' own force evaluations stay exactly those of a run without it (the
   // kernels that sum the energy may round differently).
-  ledger_.initialStrain = evaluateEffects(model_.nodes, effects_, time_, 1.0, true).strainEnergy;
+  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, true);
+  ledger_.initialStrain = ctx.strainEnergy;
   ledger_.updateSupplied();
+  return ctx.minStableDt;
 }
 
 double CentralDifference::computeForces(bool withEnergy) {
@@ -173,18 +175,16 @@ bool CentralDifference::step(double limitTime, bool monitor) {
   // reaction is normal to the plane, so its work is that of removing the normal velocity.
   for (std::size_t j = 0; j < constraints_.sliders.size(); ++j) {
     const PlaneSlider& s = constraints_.sliders[j];
-    double* vv3 = v + 3 * s.node;
-    double* xx = x + 3 * s.node;
+    double* vs = v + 3 * s.node;
+    const double vCur[3] = {vs[0], vs[1], vs[2]};
+    s.project(vs, x + 3 * s.node, dtNext);
     const double mi = m[s.node];
-    const double vn = vv3[0] * s.normal[0] + vv3[1] * s.normal[1] + vv3[2] * s.normal[2];
     for (int k = 0; k < 3; ++k) {
-      const double vOld = sliderOld_[3 * j + k], vCur = vv3[k], vNew = vCur - vn * s.normal[k];
-      replace(3 * s.node + k, mi, vOld, vCur, vNew);
-      const double rDelta = mi * (1.0 + 0.5 * a * dtAvg) * (vNew - vCur);
+      const double vOld = sliderOld_[3 * j + k], vNew = vs[k];
+      replace(3 * s.node + k, mi, vOld, vCur[k], vNew);
+      const double rDelta = mi * (1.0 + 0.5 * a * dtAvg) * (vNew - vCur[k]);
       reactOld += 0.5 * rDelta * vOld;
       reactNew += 0.5 * rDelta * vNew;
-      vv3[k] = vNew;
-      xx[k] -= dtNext * vn * s.normal[k];
     }
   }
 
@@ -233,31 +233,35 @@ void CentralDifference::restore(const std::vector<double>& x, const std::vector<
   dt_ = dt;
   steps_ = steps;
   ledger_ = ledgerFrom(halfVelocityEnergy(model_.nodes));
-  recordInitialStrain();
+  // The current strain energy and step estimate are those of the restored state, not of the state left.
+  stableDt_ = recordInitialStrain();
+  ledger_.strain = ledger_.initialStrain;
 }
 
-CentralDifference::Checkpoint CentralDifference::checkpoint() const {
-  Checkpoint c;
+StateSnapshot CentralDifference::checkpoint() const {
+  StateSnapshot c;
   checkpoint(c);
   return c;
 }
 
-void CentralDifference::checkpoint(Checkpoint& c) const {
+void CentralDifference::checkpoint(StateSnapshot& c) const {
   c.x.assign(model_.nodes.x.begin(), model_.nodes.x.end());
   c.v.assign(model_.nodes.v.begin(), model_.nodes.v.end());
   c.time = time_;
   c.dt = dt_;
-  c.steps = steps_;
+  c.step = steps_;
   c.ledger = ledger_;
+  c.stableDt = stableDt_;
 }
 
-void CentralDifference::restore(const Checkpoint& c) {
+void CentralDifference::restore(const StateSnapshot& c) {
   model_.nodes.x = c.x;
   model_.nodes.v = c.v;
   time_ = c.time;
   dt_ = c.dt;
-  steps_ = c.steps;
+  steps_ = c.step;
   ledger_ = c.ledger;
+  stableDt_ = c.stableDt;
 }
 
 }  // namespace fsi::structure

@@ -14,6 +14,7 @@
 #include "structure/effects/Effect.hpp"
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/EnergyLedger.hpp"
+#include "structure/integrate/StateSnapshot.hpp"
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure {
@@ -53,26 +54,25 @@ class CentralDifference {
   /// a run, whatever the monitoring interval; the next step evaluates its forces anew, so the trajectory does
   /// not change.
   double createdAtCurrentState();
-  /// Restores a saved state (x, v at the half step, time, last step size). The energy ledger starts again
-  /// from this state (KE0 = ½ v·M v, U0 its strain energy, no work booked).
+  /// Starts again from a saved state whose bookkeeping is not known (a restart file): x, v at the half step,
+  /// time, last step size. The energy ledger starts again from this state (KE0 = ½ v·M v, U0 its strain
+  /// energy, which is also the current one; no work booked), and the step estimate is that of this state.
   void restore(const std::vector<double>& x, const std::vector<double>& v, double time, double dt,
                long steps);
 
-  /// Everything needed to repeat a stretch of time exactly (implicit coupling re-iterates a fluid step).
-  struct Checkpoint {
-    std::vector<double> x, v;
-    double time = 0, dt = 0;
-    long steps = 0;
-    EnergyLedger ledger;
-  };
-  Checkpoint checkpoint() const;
-  /// Saves into an existing checkpoint, reusing its storage (no allocation once sized).
-  void checkpoint(Checkpoint& c) const;
-  void restore(const Checkpoint& c);
+  /// Everything needed to repeat a stretch of time exactly (implicit coupling re-iterates a fluid step; a run
+  /// returns to its last good state): the state, the ledger and the step estimate. Scalars and arrays of the
+  /// snapshot are the caller's and left as they are.
+  StateSnapshot checkpoint() const;
+  /// Saves into an existing snapshot, reusing its storage (no allocation once sized).
+  void checkpoint(StateSnapshot& c) const;
+  /// Returns to a checkpoint: state, ledger and step estimate as they were when it was taken.
+  void restore(const StateSnapshot& c);
 
  private:
   double computeForces(bool withEnergy);
-  void recordInitialStrain();
+  /// Records U0 at the current state; returns the element step estimate of that evaluation.
+  double recordInitialStrain();
 
   Model& model_;
   std::vector<const Effect*> effects_;

@@ -22,6 +22,18 @@ struct PrescribedMotion {
 struct PlaneSlider {
   int node = 0;
   std::array<double, 3> normal{0, 0, 1};  ///< unit normal
+
+  /// After a step of size dt that moved the node by dt·v: removes the normal component vn of its velocity
+  /// (v: the node's 3 values) and of that step from its position x. Returns vn. The one projection both
+  /// integrators use (dynamic relaxation with dt = 1).
+  double project(double* v, double* x, double dt) const {
+    const double vn = v[0] * normal[0] + v[1] * normal[1] + v[2] * normal[2];
+    for (int k = 0; k < 3; ++k) {
+      v[k] -= vn * normal[k];
+      x[k] -= dt * vn * normal[k];
+    }
+    return vn;
+  }
 };
 
 struct Constraints {

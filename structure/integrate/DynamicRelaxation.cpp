@@ -51,7 +51,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
     const std::vector<double> xStart = N.x;
     bool converged = false;
     r.increment = inc;
-    best_.iteration = -1;
+    best_.x.clear();  // keeps its storage
     // An attempt relaxes the increment from its start; a divergence ends it and starts another one with
     // heavier masses.
     for (bool restart = true; restart;) {
@@ -103,7 +103,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
             restart = true;
             break;
           }
-          r.diverged = true;
+          r.reason = StopReason::Unstable;
           r.startResidual = res0;
           r.finalLambda = lambda;
           locateResidual(r);
@@ -111,7 +111,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
                                   r.iterations, finite ? fmt::format("{:.3g} N", res) : "non-finite", res0);
           return r;
         }
-        if (r.iterations % kBestEvery == 0 || best_.iteration < 0)
+        if (r.iterations % kBestEvery == 0 || best_.empty())
           keepIfBest(r.iterations, inc, lf, r.residualRatio);
         if (std::max(r.residualRatio, r.energyRatio) <= s_.tolerance) {
           converged = true;
@@ -119,7 +119,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
         }
         if (r.iterations >= s_.maxIterations) break;
         if (interrupted && interrupted()) {
-          r.interrupted = true;
+          r.reason = StopReason::Interrupted;
           r.finalLambda = lambda;
           r.message = "interrupted";
           return r;
@@ -158,12 +158,8 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
           N.v[d] = (cv * N.v[d] + cr * R / mass_[d / 3]) * free_[d];
           N.x[d] += N.v[d];
         }
-        for (const PlaneSlider& sl : constraints_.sliders) {
-          double* vv = &N.v[3 * sl.node];
-          double* xx = &N.x[3 * sl.node];
-          const double vn = vv[0] * sl.normal[0] + vv[1] * sl.normal[1] + vv[2] * sl.normal[2];
-          for (int k = 0; k < 3; ++k) vv[k] -= vn * sl.normal[k], xx[k] -= vn * sl.normal[k];
-        }
+        for (const PlaneSlider& sl : constraints_.sliders)
+          sl.project(&N.v[3 * sl.node], &N.x[3 * sl.node], 1.0);
         fresh = false;
         forces(lf);
 
@@ -204,7 +200,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
       }
     }
     if (!converged) {
-      r.converged = false;
+      r.reason = StopReason::NotConverged;
       r.finalLambda = lambda;
       locateResidual(r);
       r.message = fmt::format(
@@ -215,19 +211,21 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
     }
     if (onIncrement) onIncrement(inc, r);
   }
-  r.converged = true;
+  r.reason = StopReason::Static;
   r.finalLambda = lambda;
   return r;
 }
 
 void DynamicRelaxation::keepIfBest(long iteration, int increment, double loadFactor, double residualRatio) {
-  if (best_.iteration >= 0 && !(residualRatio < best_.residualRatio)) return;
+  if (!best_.empty() && !(residualRatio < best_.scalars["residual_ratio"])) return;
   best_.x.assign(model_.nodes.x.begin(), model_.nodes.x.end());
   best_.v.assign(model_.nodes.v.begin(), model_.nodes.v.end());
-  best_.iteration = iteration;
-  best_.increment = increment;
-  best_.loadFactor = loadFactor;
-  best_.residualRatio = residualRatio;
+  best_.step = iteration;
+  best_.time = loadFactor;  // the pseudo time of a relaxation's frames
+  best_.dt = 1.0;
+  best_.scalars["residual_ratio"] = residualRatio;
+  best_.scalars["load_factor"] = loadFactor;
+  best_.scalars["increment"] = increment;
 }
 
 void DynamicRelaxation::locateResidual(RelaxationResult& r) const {

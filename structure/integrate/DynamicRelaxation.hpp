@@ -21,7 +21,9 @@
 #include "structure/effects/Effect.hpp"
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
+#include "structure/integrate/StateSnapshot.hpp"
 #include "structure/model/Model.hpp"
+#include "structure/run/StopReason.hpp"
 
 namespace fsi::structure {
 
@@ -51,9 +53,8 @@ struct RelaxationRecord {
 
 struct RelaxationResult {
   long iterations = 0;
-  bool converged = false;
-  bool diverged = false;
-  bool interrupted = false;
+  /// Static (converged), Unstable (diverged), Interrupted or NotConverged (iteration limit).
+  StopReason reason = StopReason::NotConverged;
   double residualRatio = 0, energyRatio = 0;
   double residual = 0;       ///< ‖R‖∞ on free dofs at the last evaluation [N]
   double startResidual = 0;  ///< ‖R‖∞ at the start of the failing attempt [N]
@@ -70,15 +71,6 @@ struct RelaxationResult {
   std::string message;
 };
 
-/// A kept iterate: positions and fictitious velocities, where it was, and how good.
-struct RelaxationSnapshot {
-  std::vector<double> x, v;
-  long iteration = -1;  ///< -1: none kept
-  int increment = 0;
-  double loadFactor = 0;
-  double residualRatio = 0;
-};
-
 class DynamicRelaxation {
  public:
   DynamicRelaxation(Model& model, std::vector<const Effect*> effects, Constraints constraints,
@@ -88,8 +80,10 @@ class DynamicRelaxation {
   RelaxationResult run(const std::function<void(int, const RelaxationResult&)>& onIncrement = {},
                        const std::function<bool()>& interrupted = {});
   const std::vector<double>& masses() const { return mass_; }
-  /// The iterate with the smallest residual ratio of the last increment attempted (its start included).
-  const RelaxationSnapshot& best() const { return best_; }
+  /// The iterate with the smallest residual ratio of the last increment attempted (its start included), as
+  /// a state: step = its iteration, time = scalars["load_factor"] = its load factor, dt = 1,
+  /// scalars["residual_ratio"], scalars["increment"]. Empty if none was kept.
+  const StateSnapshot& best() const { return best_; }
   static constexpr long kBestEvery = 32;
 
  private:
@@ -104,7 +98,7 @@ class DynamicRelaxation {
   std::vector<double> mass_;  ///< fictitious mass per node
   std::vector<double> free_;  ///< 1 for a free dof, 0 for a constrained one
   double strain_ = 0;
-  RelaxationSnapshot best_;
+  StateSnapshot best_;
 };
 
 }  // namespace fsi::structure

@@ -2,27 +2,43 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "structure/model/Error.hpp"
 
 namespace fsi::structure {
 
+namespace {
+// The scene names of the rules, the one place they are spelled (`solver: {mass: NAME}`).
+const std::vector<std::pair<FictitiousMassRule, std::string>>& ruleNames() {
+  static const std::vector<std::pair<FictitiousMassRule, std::string>> names{
+      {FictitiousMassRule::Gerschgorin, "gerschgorin"},
+      {FictitiousMassRule::StressBound, "stress"},
+      {FictitiousMassRule::RezaiePajand, "rezaiee_pajand"}};
+  return names;
+}
+}  // namespace
+
+const std::vector<std::string>& fictitiousMassRuleNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& entry : ruleNames()) n.push_back(entry.second);
+    return n;
+  }();
+  return names;
+}
+
 FictitiousMassRule fictitiousMassRuleFromName(const std::string& name) {
-  if (name == "gerschgorin") return FictitiousMassRule::Gerschgorin;
-  if (name == "stress") return FictitiousMassRule::StressBound;
-  if (name == "rezaiee_pajand") return FictitiousMassRule::RezaiePajand;
-  throw InputError("unknown fictitious mass rule '" + name + "'; valid: gerschgorin, stress, rezaiee_pajand");
+  for (const auto& [rule, text] : ruleNames())
+    if (text == name) return rule;
+  std::string valid;
+  for (const std::string& n : fictitiousMassRuleNames()) valid += (valid.empty() ? "" : ", ") + n;
+  throw InputError("unknown fictitious mass rule '" + name + "'; valid: " + valid);
 }
 
 std::string toString(FictitiousMassRule rule) {
-  switch (rule) {
-    case FictitiousMassRule::Gerschgorin:
-      return "gerschgorin";
-    case FictitiousMassRule::StressBound:
-      return "stress";
-    case FictitiousMassRule::RezaiePajand:
-      return "rezaiee_pajand";
-  }
+  for (const auto& [r, text] : ruleNames())
+    if (r == rule) return text;
   return "?";
 }
 

@@ -17,6 +17,10 @@ enum class FictitiousMassRule {
   RezaiePajand,  ///< m_i = λ max over dofs of max(K_ii, ½ Σ_j |K_ij|)         (λ = 0.5: the R-P masses)
 };
 
+/// The rules' scene names (`solver: {mass: NAME}`), in the enum's order; toString and
+/// fictitiousMassRuleFromName translate with the same table.
+const std::vector<std::string>& fictitiousMassRuleNames();
+/// Throws fsi::InputError listing the valid names for an unknown one.
 FictitiousMassRule fictitiousMassRuleFromName(const std::string& name);
 std::string toString(FictitiousMassRule rule);
 

@@ -1,7 +1,6 @@
 #include "structure/io/ResultsWriter.hpp"
 
 #include <fmt/format.h>
-#include <hdf5.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +13,9 @@
 #include <system_error>
 #include <utility>
 
+#include "structure/io/AtomicFile.hpp"
+#include "structure/io/Hdf5File.hpp"
+
 namespace fsi::structure {
 namespace {
 
@@ -22,89 +24,10 @@ namespace fs = std::filesystem;
 static_assert(sizeof(std::array<int, 3>) == 3 * sizeof(int) && sizeof(std::array<int, 2>) == 2 * sizeof(int),
               "connectivity arrays are written as contiguous int blocks");
 
-// Owns one HDF5 identifier and releases it with the matching close function.
-class Hid {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Hid() = default;
-  Hid(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  Hid(Hid&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
-  Hid& operator=(Hid&& other) noexcept {
-    if (this != &other) {
-      reset();
-      id_ = std::exchange(other.id_, H5I_INVALID_HID);
-      closer_ = other.closer_;
-    }
-    return *this;
-  }
-  Hid(const Hid&) = delete;
-  Hid& operator=(const Hid&) = delete;
-  ~Hid() { reset(); }
-
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  // Explicit close so that a failure (e.g. the final write of a file) can be reported.
-  herr_t close() { return valid() ? closer_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
-
- private:
-  void reset() noexcept {
-    if (valid()) closer_(std::exchange(id_, H5I_INVALID_HID));
-  }
-  hid_t id_ = H5I_INVALID_HID;
-  Closer closer_ = nullptr;
-};
-
-// Turns off HDF5's automatic stack printing for the scope (we report errors ourselves) and restores the
-// caller's setting afterwards, so other HDF5 users in the process are unaffected.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    if (H5Eget_auto2(H5E_DEFAULT, &func_, &data_) >= 0) {
-      saved_ = true;
-      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    }
-  }
-  ~QuietHdf5() {
-    if (saved_) H5Eset_auto2(H5E_DEFAULT, func_, data_);
-  }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-  bool saved_ = false;
-};
-
-// Innermost description on the HDF5 error stack; must run before the next HDF5 call clears the stack.
-std::string hdf5Detail() {
-  std::string text;
-  auto collect = [](unsigned n, const H5E_error2_t* err, void* out) -> herr_t {
-    if (n == 0 && err != nullptr && err->desc != nullptr) *static_cast<std::string*>(out) = err->desc;
-    return 0;
-  };
-  if (H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, collect, &text) < 0 || text.empty()) return {};
-  return " (HDF5: " + text + ")";
-}
+using hdf5::Hid;
 
 // Error context: every failure names the file and the object concerned.
-struct Context {
-  const fs::path& file;
-
-  // An empty object means the file itself.
-  [[noreturn]] void fail(const std::string& what, const std::string& object) const {
-    const std::string where = object.empty() ? fmt::format("'{}'", file.string())
-                                             : fmt::format("'{}' in '{}'", object, file.string());
-    throw std::runtime_error(fmt::format("ResultsWriter: {} {}{}", what, where, hdf5Detail()));
-  }
-  Hid check(hid_t id, Hid::Closer closer, const char* what, const std::string& object) const {
-    if (id < 0) fail(what, object);
-    return Hid(id, closer);
-  }
-  void check(herr_t status, const char* what, const std::string& object) const {
-    if (status < 0) fail(what, object);
-  }
-
+struct Context : hdf5::Context {
   Hid createGroup(hid_t parent, const std::string& name, const std::string& fullName) const {
     return check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                  "cannot create group", fullName);
@@ -303,7 +226,7 @@ struct ResultsWriter::Impl {
   std::vector<StepRecord> records;
   std::size_t nextIndex = 0;  // of the next step group (append mode: after the kept ones)
 
-  Context ctx() const { return Context{h5Path}; }
+  Context ctx() const { return Context{{h5Path, "ResultsWriter"}}; }
   static std::unique_ptr<Impl> prepare(fs::path h5File, int numNodes,
                                        const std::vector<std::array<int, 3>>& triangles,
                                        const std::vector<std::array<int, 2>>& lines);
@@ -337,10 +260,10 @@ struct ResultsWriter::Impl {
   // Groups first, the file last; the flush status is checked because it performs the final metadata write.
   void close() {
     if (!file.valid()) return;
-    const QuietHdf5 quiet;
+    const hdf5::QuietErrors quiet;
     std::string error;
     auto note = [&error](herr_t status, const char* what) {
-      if (status < 0 && error.empty()) error = what + hdf5Detail();
+      if (status < 0 && error.empty()) error = what + hdf5::errorDetail();
     };
     note(steps.close(), "cannot close /steps");
     note(tables.close(), "cannot close /tables");
@@ -414,26 +337,12 @@ void ResultsWriter::Impl::writeXdmf() const {
   x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
 
   // Replace atomically so that a reader (or a crash) never sees a half-written index.
-  fs::path tmp = xdmfPath;
-  tmp += ".tmp";
-  {
+  replaceFileAtomically(xdmfPath, "ResultsWriter", [&](const fs::path& tmp) {
     std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
     os.write(x.data(), static_cast<std::streamsize>(x.size()));
     os.close();
-    if (!os) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error(fmt::format("ResultsWriter: cannot write '{}'", tmp.string()));
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, xdmfPath, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw std::runtime_error(fmt::format("ResultsWriter: cannot rename '{}' to '{}': {}", tmp.string(),
-                                         xdmfPath.string(), ec.message()));
-  }
+    if (!os) throw std::runtime_error(fmt::format("ResultsWriter: cannot write '{}'", tmp.string()));
+  });
 }
 
 namespace {
@@ -454,7 +363,7 @@ void checkConnectivity(const std::vector<Element>& elements, int numNodes, const
 
 void ResultsWriter::Impl::create(const std::vector<std::array<int, 3>>& triangles,
                                  const std::vector<std::array<int, 2>>& lines) {
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const Context c = ctx();
   file = c.check(H5Fcreate(h5Path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                  "cannot create file", "");
@@ -475,7 +384,7 @@ void ResultsWriter::Impl::create(const std::vector<std::array<int, 3>>& triangle
 
 void ResultsWriter::Impl::open(double keepUntil, const std::vector<std::array<int, 3>>& triangles,
                                const std::vector<std::array<int, 2>>& lines) {
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const Context c = ctx();
   file =
       c.check(H5Fopen(h5Path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "cannot open for appending", "");
@@ -612,7 +521,7 @@ void ResultsWriter::writeStep(double time, long step, const double* coordinates,
     }
   }
 
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const Context c = m.ctx();
   Impl::StepRecord record{stepGroupName(m.nextIndex), time, {}};
   const std::string groupPath = "/steps/" + record.group;
@@ -676,7 +585,7 @@ void ResultsWriter::writeTable(const std::string& name, const std::vector<std::s
     }
   }
 
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const Context c = m.ctx();
   const std::string groupPath = "/tables/" + name;
   // Histories are rewritten whole at each output; the old copy's space is not reclaimed, which is negligible.
@@ -700,7 +609,7 @@ std::pair<std::vector<std::string>, std::vector<std::vector<double>>> ResultsWri
   const Impl& m = *impl_;
   m.requireOpen("readTable");
   checkName(name, "table");
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const Context c = m.ctx();
   const std::string groupPath = "/tables/" + name;
   const htri_t exists = H5Lexists(m.tables.get(), name.c_str(), H5P_DEFAULT);
@@ -739,7 +648,7 @@ void ResultsWriter::writeRootAttribute(const std::string& name, const std::vecto
   Impl& m = *impl_;
   m.requireOpen("writeRootAttribute");
   checkName(name, "attribute");
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const Context c = m.ctx();
   const std::string full = "/@" + name;
   const htri_t exists = H5Aexists(m.file.get(), name.c_str());
@@ -757,7 +666,7 @@ void ResultsWriter::writeRootAttribute(const std::string& name, const std::vecto
 std::vector<double> ResultsWriter::rootAttribute(const std::string& name) const {
   const Impl& m = *impl_;
   m.requireOpen("rootAttribute");
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const Context c = m.ctx();
   const std::string full = "/@" + name;
   const htri_t exists = H5Aexists(m.file.get(), name.c_str());

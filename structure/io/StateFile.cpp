@@ -1,16 +1,13 @@
 #include "structure/io/StateFile.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <hdf5.h>
-#include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
 
+#include "structure/io/AtomicFile.hpp"
+#include "structure/io/Hdf5File.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::structure {
@@ -21,86 +18,11 @@ namespace fs = std::filesystem;
 constexpr int kFormatVersion = 1;
 constexpr const char* kVersionAttribute = "fsi_state_version";
 
-// Owns one HDF5 identifier and releases it with the matching close function.
-class Hid {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Hid() = default;
-  Hid(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  Hid(Hid&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
-  Hid& operator=(Hid&&) = delete;
-  Hid(const Hid&) = delete;
-  Hid& operator=(const Hid&) = delete;
-  ~Hid() {
-    if (valid()) closer_(id_);
-  }
-
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  // Explicit close so that a failure (the final write of a file) can be reported.
-  herr_t close() { return valid() ? closer_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer closer_ = nullptr;
-};
-
-// Turns off HDF5's automatic stack printing for the scope (errors are reported by exception) and restores
-// the caller's setting afterwards.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    if (H5Eget_auto2(H5E_DEFAULT, &func_, &data_) >= 0) {
-      saved_ = true;
-      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    }
-  }
-  ~QuietHdf5() {
-    if (saved_) H5Eset_auto2(H5E_DEFAULT, func_, data_);
-  }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-  bool saved_ = false;
-};
-
-// Innermost description on the HDF5 error stack; must run before the next HDF5 call clears the stack.
-std::string hdf5Detail() {
-  std::string text;
-  auto collect = [](unsigned n, const H5E_error2_t* err, void* out) -> herr_t {
-    if (n == 0 && err != nullptr && err->desc != nullptr) *static_cast<std::string*>(out) = err->desc;
-    return 0;
-  };
-  if (H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, collect, &text) < 0 || text.empty()) return {};
-  return " (HDF5: " + text + ")";
-}
+using hdf5::Hid;
 
 // Error context: writing failures are std::runtime_error, reading failures InputError (the user gave the
 // file); both name the file and the object.
-struct Context {
-  const fs::path& file;
-  bool reading;
-
-  // An empty object means the file itself.
-  [[noreturn]] void fail(const std::string& what, const std::string& object) const {
-    const std::string where = object.empty() ? fmt::format("'{}'", file.string())
-                                             : fmt::format("'{}' in '{}'", object, file.string());
-    const std::string message =
-        fmt::format("{}: {} {}{}", reading ? "readState" : "writeState", what, where, hdf5Detail());
-    if (reading) throw InputError(message);
-    throw std::runtime_error(message);
-  }
-  Hid check(hid_t id, Hid::Closer closer, const char* what, const std::string& object) const {
-    if (id < 0) fail(what, object);
-    return Hid(id, closer);
-  }
-  void check(herr_t status, const char* what, const std::string& object) const {
-    if (status < 0) fail(what, object);
-  }
-
+struct Context : hdf5::Context {
   // ---- writing ----
   template <typename T>
   void writeAttribute(hid_t object, const char* name, hid_t fileType, hid_t memType, const T& value) const {
@@ -201,8 +123,8 @@ void checkKey(const std::string& key, const char* kind) {
 }
 
 void writeHdf5(const fs::path& path, const StateSnapshot& s) {
-  const QuietHdf5 quiet;
-  const Context c{path, false};
+  const hdf5::QuietErrors quiet;
+  const Context c{{path, "writeState", false}};
   Hid file = c.check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                      "cannot create file", "");
   c.writeAttribute(file.get(), kVersionAttribute, H5T_STD_I32LE, H5T_NATIVE_INT, kFormatVersion);
@@ -225,22 +147,6 @@ void writeHdf5(const fs::path& path, const StateSnapshot& s) {
   c.check(file.close(), "cannot close", "");
 }
 
-// The data must be on disk before the rename makes it the current state, or a machine crash could leave an
-// empty file under the final name.
-void syncToDisk(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0 || ::fsync(fd) != 0) {
-    const int err = errno;
-    if (fd >= 0) ::close(fd);
-    throw std::runtime_error(
-        fmt::format("writeState: cannot sync '{}': {}", path.string(), std::strerror(err)));
-  }
-  if (::close(fd) != 0) {
-    throw std::runtime_error(
-        fmt::format("writeState: cannot close '{}': {}", path.string(), std::strerror(errno)));
-  }
-}
-
 }  // namespace
 
 void writeState(const fs::path& file, const StateSnapshot& state) {
@@ -260,22 +166,7 @@ void writeState(const fs::path& file, const StateSnapshot& state) {
                                            file.parent_path().string(), ec.message()));
     }
   }
-  fs::path tmp = file;
-  tmp += ".tmp";
-  try {
-    writeHdf5(tmp, state);
-    syncToDisk(tmp);
-    std::error_code ec;
-    fs::rename(tmp, file, ec);
-    if (ec) {
-      throw std::runtime_error(fmt::format("writeState: cannot rename '{}' to '{}': {}", tmp.string(),
-                                           file.string(), ec.message()));
-    }
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
+  replaceFileAtomically(file, "writeState", [&](const fs::path& tmp) { writeHdf5(tmp, state); });
 }
 
 StateSnapshot readState(const fs::path& file) {
@@ -284,14 +175,14 @@ StateSnapshot readState(const fs::path& file) {
     throw InputError(
         fmt::format("readState: state file '{}' does not exist or is not a regular file", file.string()));
   }
-  const QuietHdf5 quiet;
+  const hdf5::QuietErrors quiet;
   const htri_t isHdf5 = H5Fis_hdf5(file.c_str());
   if (isHdf5 <= 0) {
-    const std::string detail = isHdf5 < 0 ? hdf5Detail() : std::string();
+    const std::string detail = isHdf5 < 0 ? hdf5::errorDetail() : std::string();
     throw InputError(fmt::format("readState: '{}' is not a readable HDF5 file{}", file.string(), detail));
   }
 
-  const Context c{file, true};
+  const Context c{{file, "readState", true}};
   const Hid f = c.check(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "cannot open", "");
   const htri_t tagged = H5Aexists(f.get(), kVersionAttribute);
   if (tagged < 0) c.fail("cannot query attribute", std::string("/@") + kVersionAttribute);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "structure/model/Error.hpp"
+#include "structure/scene/GeneratorKinds.hpp"
 
 namespace fsi::structure::parafoil {
 
@@ -90,4 +91,24 @@ ParafoilParams readParafoilParams(const YamlMap& g, const std::filesystem::path&
   return q;
 }
 
+namespace {
+
+// A section file is read relative to the scene's folder (the folder of the file the entry is in).
+MeshData parafoilFrom(const YamlMap& g, const std::string& meshName) {
+  const ParafoilParams p = readParafoilParams(g, std::filesystem::path(g.file()).parent_path());
+  return locatedGenerate(g, buildParafoil, p, meshName);
+}
+
+}  // namespace
+
 }  // namespace fsi::structure::parafoil
+
+namespace fsi::structure {
+
+GeneratorKind parafoilGenerator() {
+  return {"parafoil", parafoil::parafoilKeys(),
+          "ram-air canopy: skins, ribs, cascaded suspension lines, brakes (docs/PARAFOIL.md)",
+          parafoil::parafoilFrom};
+}
+
+}  // namespace fsi::structure

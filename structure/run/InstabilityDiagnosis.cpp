@@ -94,7 +94,7 @@ std::string diagnoseRelaxation(const Scene& scene, const DynamicRelaxation& dr, 
   const Model& m = *scene.model;
   const Nodes& N = m.nodes;
   std::string s;
-  if (r.diverged)
+  if (r.reason == StopReason::Unstable)
     s = fmt::format("dynamic relaxation diverged at iteration {} of increment {}: ", r.iterations,
                     r.increment);
   else
@@ -103,7 +103,7 @@ std::string diagnoseRelaxation(const Scene& scene, const DynamicRelaxation& dr, 
   if (r.nonFiniteNodes > 0)
     s += fmt::format("non-finite residual at {} node(s), first {}. ", r.nonFiniteNodes,
                      m.describeNode(r.firstNonFiniteNode));
-  else if (r.diverged)
+  else if (r.reason == StopReason::Unstable)
     s += fmt::format("residual ‖R‖∞ {:.3g} N, {:.3g} times its {:.3g} N at the start of the attempt. ",
                      r.residual, r.startResidual > 0 ? r.residual / r.startResidual : 0.0, r.startResidual);
   else
@@ -131,15 +131,16 @@ std::string diagnoseRelaxation(const Scene& scene, const DynamicRelaxation& dr, 
   }
   s += fmt::format("Mass scale λ {:.3g} (started at {:.3g}; {} restart(s), {} node mass increase(s)).",
                    r.finalLambda, r.lambda, r.restarts, r.massIncreases);
-  if (r.diverged)
+  if (r.reason == StopReason::Unstable)
     s += scene.solver.relaxation.autoMass
              ? " The fictitious masses are too light for the stiffness even after the safeguards: raise "
                "solver.lambda."
              : " The fictitious masses are too light for the stiffness: raise solver.lambda, or enable "
                "solver.auto_mass.";
-  const RelaxationSnapshot& b = dr.best();
-  if (b.iteration >= 0)
-    s += fmt::format(" Last good state: iteration {} (residual ratio {:.3g}).", b.iteration, b.residualRatio);
+  const StateSnapshot& b = dr.best();
+  if (!b.empty())
+    s += fmt::format(" Last good state: iteration {} (residual ratio {:.3g}).", b.step,
+                     b.scalars.at("residual_ratio"));
   return s;
 }
 

@@ -5,13 +5,18 @@
 namespace fsi::structure {
 
 namespace {
-volatile std::sig_atomic_t gInterrupted = 0;
+// The token the signal requests: a signal handler reaches nothing but static storage. Lock-free, so reading
+// it in the handler is safe.
+std::atomic<StopToken*> gSigintToken{nullptr};
+static_assert(std::atomic<StopToken*>::is_always_lock_free, "read in a signal handler");
+
 extern "C" void onInterrupt(int) {
-  gInterrupted = 1;
+  if (StopToken* token = gSigintToken.load(std::memory_order_relaxed)) token->request();
 }
 }  // namespace
 
-void installInterruptHandler() {
+void installInterruptHandler(StopToken& token) {
+  gSigintToken.store(&token);
   // sigaction rather than signal(): the handler stays installed after the first signal (no reset to the
   // default action, which a second Ctrl-C during the state write would turn into a kill), and interrupted
   // system calls restart instead of failing the file I/O in progress.
@@ -20,18 +25,6 @@ void installInterruptHandler() {
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = SA_RESTART;
   sigaction(SIGINT, &sa, nullptr);
-}
-
-bool interruptRequested() {
-  return gInterrupted != 0;
-}
-
-void requestInterrupt() {
-  gInterrupted = 1;
-}
-
-void clearInterruptRequest() {
-  gInterrupted = 0;
 }
 
 }  // namespace fsi::structure

@@ -1,10 +1,7 @@
-// The dynamic-relaxation run: DynamicRelaxation driven to the static state with output, probes, the residual
-// history, summary.json and the stop handling it shares with the explicit run (RunCommon).
+// The dynamic-relaxation run: DynamicRelaxation driven to the static state, with what it shares with the
+// explicit run around its loop (RunCommon): output series, stop handling, summary.json.
 #include <fmt/format.h>
 
-#include <chrono>
-
-#include "structure/io/SceneFrames.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
 #include "structure/run/RunCommon.hpp"
 #include "structure/run/Simulation.hpp"
@@ -13,6 +10,7 @@ namespace fsi::structure {
 
 namespace {
 
+// The current iterate as a state (as DynamicRelaxation::best() keeps one).
 StateSnapshot relaxationState(const Nodes& N, long iteration, double loadFactor, double residualRatio,
                               int increment) {
   StateSnapshot s;
@@ -30,15 +28,13 @@ StateSnapshot relaxationState(const Nodes& N, long iteration, double loadFactor,
 }  // namespace
 
 RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
-  using Clock = std::chrono::steady_clock;
-  namespace fs = std::filesystem;
-  fs::create_directories(opt.outDir);
+  std::filesystem::create_directories(opt.outDir);
   Model& model = *scene.model;
   Nodes& N = model.nodes;
   const RelaxationSettings& rs = scene.solver.relaxation;
   RunResult result;
   if (!opt.quiet) {
-    fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
+    printSceneLine(scene);
     fmt::print(
         "model  {} nodes, {} membrane triangles, {} cables; dynamic relaxation {} (λ = {:.3g}), ε = {:.3g}, "
         "{} increment(s)\n",
@@ -46,51 +42,44 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
         rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
     std::fflush(stdout);
   }
-  SceneFrames frames(scene, opt.outDir / "results.h5");
-  frames.write(0.0, 0);
+  RunOutput output(scene, opt);
   DynamicRelaxation dr(model, scene.effectList(), scene.constraints, rs);
-  const auto wall0 = Clock::now();
-  // An interrupt already pending (Ctrl-C during set-up) stops at the first iteration, with the start state.
+  RunClock clock(opt.progressSeconds);
+  // A stop already requested (Ctrl-C during set-up) stops at the first iteration, with the start state.
   const RelaxationResult r = dr.run(
       [&](int inc, const RelaxationResult& rr) {
-        frames.write(double(inc) / rs.increments, rr.iterations);
+        output.frame(double(inc) / rs.increments, rr.iterations);
         if (!opt.quiet)
           fmt::print("increment {}/{} converged: iteration {}, residual ratio {:.3g}, KE/U {:.3g}\n", inc,
                      rs.increments, rr.iterations, rr.residualRatio, rr.energyRatio);
       },
-      [] { return interruptRequested(); });
-  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
-  result.reason = r.converged     ? StopReason::Static
-                  : r.diverged    ? StopReason::Unstable
-                  : r.interrupted ? StopReason::Interrupted
-                                  : StopReason::NotConverged;
+      [&] { return stopRequested(opt); });
+  const double wall = clock.seconds();
+  result.reason = r.reason;
   const double loadFactor = double(std::max(r.increment, 1)) / rs.increments;
-  if (r.diverged) {
+  if (r.reason == StopReason::Unstable) {
     // Diagnose at the diverged state, then keep the best iterate of the failing increment.
     result.diagnosis = diagnoseRelaxation(scene, dr, r);
-    const RelaxationSnapshot& b = dr.best();
-    if (b.iteration >= 0) {
+    const StateSnapshot& b = dr.best();
+    if (!b.empty()) {
       N.x = b.x;
       N.v = b.v;
-      evaluateEffects(N, scene.effectList(), rs.loadTime, b.loadFactor, false);
-      writeStopState(opt, relaxationState(N, b.iteration, b.loadFactor, b.residualRatio, b.increment),
-                     result);
-      if (!result.stateFile.empty()) result.diagnosis += " Saved in " + result.stateFile.string() + ".";
-      frames.write(b.loadFactor, b.iteration);
+      evaluateEffects(N, scene.effectList(), rs.loadTime, b.time, false);
+      saveStopState(opt, b, result);
+      output.frame(b.time, b.step);
     } else {
       result.diagnosis += " No iterate was finite: no state to keep.";
-      frames.write(loadFactor, r.iterations);
+      output.frame(loadFactor, r.iterations);
     }
-  } else if (r.interrupted) {
+  } else if (r.reason == StopReason::Interrupted) {
     result.diagnosis =
         fmt::format("stopped at iteration {} of increment {} (residual ratio {:.3g}, KE/U {:.3g})",
                     r.iterations, r.increment, r.residualRatio, r.energyRatio);
-    writeStopState(opt, relaxationState(N, r.iterations, loadFactor, r.residualRatio, r.increment), result);
-    if (!result.stateFile.empty()) result.diagnosis += "; state saved in " + result.stateFile.string();
-    frames.write(loadFactor, r.iterations);
-  } else if (!r.converged) {
+    saveStopState(opt, relaxationState(N, r.iterations, loadFactor, r.residualRatio, r.increment), result);
+    output.frame(loadFactor, r.iterations);
+  } else if (r.reason == StopReason::NotConverged) {
     result.diagnosis = diagnoseRelaxation(scene, dr, r);
-    frames.write(loadFactor, r.iterations);
+    output.frame(loadFactor, r.iterations);
   }
   result.probes = evaluateProbes(scene);
   {
@@ -102,18 +91,17 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
       cols[3].push_back(h.kinetic);
       cols[4].push_back(h.strain);
     }
-    frames.writer().writeTable("residual",
-                               {"iteration", "residual_ratio", "energy_ratio", "kinetic", "strain"}, cols);
+    output.table("residual", {"iteration", "residual_ratio", "energy_ratio", "kinetic", "strain"}, cols);
   }
-  frames.writer().close();
+  output.close();
 
-  nlohmann::json s = summaryHead(scene, result);
+  const bool converged = r.reason == StopReason::Static;
   nlohmann::json st;
   st["solver"] = "dynamic_relaxation";
   st["method"] = scene.solver.method;
   st["lambda"] = r.lambda;
   st["iterations"] = r.iterations;
-  st["converged"] = r.converged;
+  st["converged"] = converged;
   st["final_residual"] = r.residualRatio;
   st["energy_ratio"] = r.energyRatio;
   st["tolerance"] = rs.tolerance;
@@ -131,20 +119,17 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   st["strain_energy"] = r.history.empty() ? 0.0 : r.history.back().strain;
   st["element_updates_per_second"] =
       wall > 0 ? double(model.membranes.count + model.cables.count) * double(r.iterations) / wall : 0.0;
-  if (r.diverged && dr.best().iteration >= 0) {
-    st["last_good_iteration"] = dr.best().iteration;
-    st["last_good_residual_ratio"] = dr.best().residualRatio;
+  if (r.reason == StopReason::Unstable && !dr.best().empty()) {
+    st["last_good_iteration"] = dr.best().step;
+    st["last_good_residual_ratio"] = dr.best().scalars.at("residual_ratio");
   }
-  s["stats"] = st;
-  writeSummary(s, result, opt);
-  if (!opt.quiet) {
-    fmt::print(
-        "stop   {} after {} iterations ({} kinetic resets, {} node mass increases, {} restarts), {:.3g} s "
-        "wall, {:.3g} ms per iteration, residual ratio {:.3g}, KE/U {:.3g}\n",
-        toString(result.reason), r.iterations, r.kineticResets, r.massIncreases, r.restarts, wall,
-        1e3 * st["seconds_per_iteration"].get<double>(), r.residualRatio, r.energyRatio);
-  }
-  printProbesAndDiagnosis(result, opt.quiet);
+  const std::string stopLine = fmt::format(
+      "stop   {} after {} iterations ({} kinetic resets, {} node mass increases, {} restarts), {:.3g} s "
+      "wall, "
+      "{:.3g} ms per iteration, residual ratio {:.3g}, KE/U {:.3g}",
+      toString(result.reason), r.iterations, r.kineticResets, r.massIncreases, r.restarts, wall,
+      1e3 * st["seconds_per_iteration"].get<double>(), r.residualRatio, r.energyRatio);
+  finishRun(scene, result, opt, st, stopLine);
   return result;
 }
 

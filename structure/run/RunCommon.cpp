@@ -2,27 +2,56 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <exception>
 #include <fstream>
 
+#include "structure/io/StateFile.hpp"
+
 namespace fsi::structure {
 
-nlohmann::json summaryHead(const Scene& scene, const RunResult& result) {
-  nlohmann::json s;
-  s["scene"] = scene.file.string();
-  s["title"] = scene.title;
-  s["stop_reason"] = toString(result.reason);
-  s["effects"] = scene.enabledEffects;
-  s["probes"] = nlohmann::json::object();
-  for (const auto& [k, v] : result.probes) s["probes"][k] = v;
-  return s;
+void printSceneLine(const Scene& scene) {
+  fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
 }
 
-void writeSummary(nlohmann::json s, RunResult& result, const RunOptions& opt) {
-  if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
-  if (!result.stateFile.empty()) s["state_file"] = result.stateFile.filename().string();
-  result.summary = s;
-  std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
+RunClock::RunClock(double progressSeconds)
+    : progressSeconds_(progressSeconds), start_(Clock::now()), lastPrint_(start_) {}
+
+double RunClock::seconds() const {
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+bool RunClock::progressDue(bool soon) {
+  const auto now = Clock::now();
+  const double since = std::chrono::duration<double>(now - lastPrint_).count();
+  if (!(since >= progressSeconds_ || (soon && since >= 0.02 * progressSeconds_))) return false;
+  lastPrint_ = now;
+  return true;
+}
+
+RunOutput::RunOutput(const Scene& scene, const RunOptions& opt) : frames_(scene, opt.outDir / "results.h5") {
+  frames_.write(0.0, 0);
+  for (const auto& p : scene.probes) probeNames_.push_back(p.name);
+  probeRows_.resize(probeNames_.size() + 1);
+}
+
+void RunOutput::probeRow(double time, const std::map<std::string, double>& values) {
+  probeRows_[0].push_back(time);
+  for (std::size_t i = 0; i < probeNames_.size(); ++i) probeRows_[i + 1].push_back(values.at(probeNames_[i]));
+}
+
+void RunOutput::table(const std::string& name, const std::vector<std::string>& columns,
+                      const std::vector<std::vector<double>>& data) {
+  frames_.writer().writeTable(name, columns, data);
+}
+
+void RunOutput::close() {
+  if (!probeRows_[0].empty()) {
+    std::vector<std::string> cols{"time"};
+    cols.insert(cols.end(), probeNames_.begin(), probeNames_.end());
+    frames_.writer().writeTable("probes", cols, probeRows_);
+  }
+  frames_.writer().close();
 }
 
 std::filesystem::path stopStateFile(const RunOptions& opt, StopReason reason) {
@@ -36,20 +65,40 @@ std::filesystem::path stopStateFile(const RunOptions& opt, StopReason reason) {
   }
 }
 
-void writeStopState(const RunOptions& opt, const StateSnapshot& state, RunResult& result) {
+void saveStopState(const RunOptions& opt, const StateSnapshot& state, RunResult& result) {
   const std::filesystem::path file = stopStateFile(opt, result.reason);
   if (file.empty()) return;
+  // An instability's diagnosis is sentences, an interrupt's one line.
+  const bool sentences = result.reason != StopReason::Interrupted;
   try {
     writeState(file, state);
     result.stateFile = file;
+    result.diagnosis += sentences ? " Saved in " + file.string() + "." : "; state saved in " + file.string();
   } catch (const std::exception& e) {
-    result.diagnosis += fmt::format(" The state could not be saved: {}", e.what());
+    result.diagnosis += fmt::format(
+        sentences ? " The state could not be saved: {}" : "; the state could not be saved: {}", e.what());
   }
 }
 
-void printProbesAndDiagnosis(const RunResult& result, bool quiet) {
-  if (!quiet)
+void finishRun(const Scene& scene, RunResult& result, const RunOptions& opt, nlohmann::json stats,
+               const std::string& stopLine) {
+  nlohmann::json s;
+  s["scene"] = scene.file.string();
+  s["title"] = scene.title;
+  s["stop_reason"] = toString(result.reason);
+  s["effects"] = scene.enabledEffects;
+  s["probes"] = nlohmann::json::object();
+  for (const auto& [k, v] : result.probes) s["probes"][k] = v;
+  s["stats"] = std::move(stats);
+  if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
+  if (!result.stateFile.empty()) s["state_file"] = result.stateFile.filename().string();
+  result.summary = s;
+  std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
+
+  if (!opt.quiet) {
+    fmt::print("{}\n", stopLine);
     for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
+  }
   if (result.diagnosis.empty()) return;
   fmt::print(stderr, "{}: {}\n", result.reason == StopReason::Interrupted ? "interrupted" : "error",
              result.diagnosis);

@@ -3,152 +3,21 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "structure/io/ResultsWriter.hpp"
-#include "structure/io/SceneFrames.hpp"
-#include "structure/io/StateFile.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
 #include "structure/run/RunCommon.hpp"
 
 namespace fsi::structure {
 
-namespace {
-double componentOf(const double* u, int component) {
-  if (component < 3) return u[component];
-  return std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-}
-
-double reduceValues(const std::vector<double>& vals, ProbeSpec::Reduce r) {
-  switch (r) {
-    case ProbeSpec::Reduce::Value:
-      return vals.front();
-    case ProbeSpec::Reduce::Mean: {
-      double s = 0;
-      for (double v : vals) s += v;
-      return s / double(vals.size());
-    }
-    case ProbeSpec::Reduce::Max:
-      return *std::max_element(vals.begin(), vals.end());
-    case ProbeSpec::Reduce::Min:
-      return *std::min_element(vals.begin(), vals.end());
-    case ProbeSpec::Reduce::Sum: {
-      double s = 0;
-      for (double v : vals) s += v;
-      return s;
-    }
-  }
-  return 0.0;
-}
-}  // namespace
-
-std::string toString(StopReason r) {
-  switch (r) {
-    case StopReason::EndTime:
-      return "end_time";
-    case StopReason::Static:
-      return "static";
-    case StopReason::NotConverged:
-      return "not_converged";
-    case StopReason::Unstable:
-      return "unstable";
-    case StopReason::Interrupted:
-      return "interrupted";
-  }
-  return "?";
-}
-
-int RunResult::exitCode() const {
-  switch (reason) {
-    case StopReason::Unstable:
-      return 3;
-    case StopReason::Interrupted:
-      return 130;
-    case StopReason::NotConverged:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
-std::map<std::string, double> evaluateProbes(const Scene& scene) {
-  const Model& model = *scene.model;
-  const Nodes& N = model.nodes;
-  std::map<std::string, double> out;
-  MembraneStressField stress;
-  bool haveStress = false;
-  for (const ProbeSpec& p : scene.probes) {
-    std::vector<double> vals;
-    switch (p.type) {
-      case ProbeSpec::Type::Position:
-        for (int n : p.nodes) {
-          double r[3];
-          for (int k = 0; k < 3; ++k) r[k] = N.x[3 * n + k] - (p.component == 4 ? p.center[k] : 0.0);
-          vals.push_back(componentOf(r, p.component == 4 ? 3 : p.component));
-        }
-        break;
-      case ProbeSpec::Type::Displacement:
-        for (int n : p.nodes) {
-          const double u[3] = {N.x[3 * n] - N.X[3 * n], N.x[3 * n + 1] - N.X[3 * n + 1],
-                               N.x[3 * n + 2] - N.X[3 * n + 2]};
-          if (p.component == 4) {
-            double r = 0, r0 = 0;
-            for (int k = 0; k < 3; ++k) {
-              r += std::pow(N.x[3 * n + k] - p.center[k], 2);
-              r0 += std::pow(N.X[3 * n + k] - p.center[k], 2);
-            }
-            vals.push_back(std::sqrt(r) - std::sqrt(r0));
-          } else {
-            vals.push_back(componentOf(u, p.component));
-          }
-        }
-        break;
-      case ProbeSpec::Type::Reaction: {
-        double r[3] = {0, 0, 0};
-        for (int n : p.nodes)
-          for (int k = 0; k < 3; ++k) r[k] += N.fint[3 * n + k] - N.fext[3 * n + k];
-        vals.push_back(componentOf(r, p.component));
-        break;
-      }
-      case ProbeSpec::Type::Volume: {
-        // Divergence theorem about `center`: symmetry planes through the centre add nothing.
-        double v = 0;
-        for (int e : p.triangles) {
-          const int* c = &model.membranes.conn[3 * e];
-          double a[3], b[3], d[3];
-          for (int k = 0; k < 3; ++k) {
-            a[k] = N.x[3 * c[0] + k] - p.center[k];
-            b[k] = N.x[3 * c[1] + k] - p.center[k];
-            d[k] = N.x[3 * c[2] + k] - p.center[k];
-          }
-          v += a[0] * (b[1] * d[2] - b[2] * d[1]) + a[1] * (b[2] * d[0] - b[0] * d[2]) +
-               a[2] * (b[0] * d[1] - b[1] * d[0]);
-        }
-        vals.push_back(v / 6.0);
-        break;
-      }
-      case ProbeSpec::Type::Stress:
-        if (!haveStress && scene.membrane) scene.membrane->evaluate(N.x.data(), stress), haveStress = true;
-        for (int e : p.triangles)
-          vals.push_back(stress.principal[2 * e + (p.quantity == "min_principal" ? 1 : 0)]);
-        break;
-    }
-    out[p.name] = reduceValues(vals, p.reduce);
-  }
-  return out;
-}
+// evaluateProbes: structure/probes/EvaluateProbes.cpp.
 
 namespace {
 
-StateSnapshot explicitState(const CentralDifference& cd, const Nodes& N) {
-  StateSnapshot s;
-  s.time = cd.time();
-  s.step = cd.steps();
-  s.dt = cd.lastDt();
-  s.x = N.x;
-  s.v = N.v;
+// The state an explicit run keeps when it stops, with its energies for whoever reads the file.
+StateSnapshot explicitState(const CentralDifference& cd) {
+  StateSnapshot s = cd.checkpoint();
   const EnergyLedger& E = cd.energy();
   s.scalars["kinetic_energy"] = E.kinetic;
   s.scalars["strain_energy"] = E.strain;
@@ -162,9 +31,7 @@ StateSnapshot explicitState(const CentralDifference& cd, const Nodes& N) {
 
 RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   if (scene.solver.type == SolverControl::Type::DynamicRelaxation) return runRelaxation(scene, opt);
-  using Clock = std::chrono::steady_clock;
-  namespace fs = std::filesystem;
-  fs::create_directories(opt.outDir);
+  std::filesystem::create_directories(opt.outDir);
   Model& model = *scene.model;
   Nodes& N = model.nodes;
   const TimeControl& tc = scene.time;
@@ -172,7 +39,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   RunResult result;
 
   if (!opt.quiet) {
-    fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
+    printSceneLine(scene);
     fmt::print("model  {} nodes, {} membrane triangles, {} cables; effects: ", N.count, model.membranes.count,
                model.cables.count);
     for (std::size_t i = 0; i < scene.enabledEffects.size(); ++i)
@@ -185,29 +52,24 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
     std::fflush(stdout);
   }
 
-  SceneFrames frames(scene, opt.outDir / "results.h5");
-  frames.write(0.0, 0);
+  RunOutput output(scene, opt);
   std::vector<std::vector<double>> energyRows(11);
-  std::vector<std::string> probeNames;
-  for (const auto& p : scene.probes) probeNames.push_back(p.name);
-  std::vector<std::vector<double>> probeRows(probeNames.size() + 1);
 
   // The last state that passed a check (its ledger too: the summary of an unstable run reports it).
-  CentralDifference::Checkpoint good;
+  StateSnapshot good;
   cd.checkpoint(good);
   const double tEnd = tc.endTime;
   double nextOutput = scene.output.interval > 0 ? scene.output.interval : tEnd;
   int staticHits = 0;
   bool nonFinite = false;
   double createdAtStop = -1;  // >= 0: the check at an output or the end stopped the run
-  const auto wall0 = Clock::now();
-  auto lastPrint = wall0;
+  RunClock clock(opt.progressSeconds);
   bool printNow = false;
 
   while (true) {
     // Polled before each step, so that a request pending from the set-up (or from before the run) stops
     // at once; it is never cleared here.
-    if (interruptRequested()) {
+    if (stopRequested(opt)) {
       result.reason = StopReason::Interrupted;
       break;
     }
@@ -267,24 +129,18 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       }
     }
     if (atOutput && scene.output.interval > 0 && !atEnd) {
-      frames.write(cd.time(), cd.steps());
-      auto probes = evaluateProbes(scene);
-      probeRows[0].push_back(cd.time());
-      for (std::size_t i = 0; i < probeNames.size(); ++i) probeRows[i + 1].push_back(probes[probeNames[i]]);
+      output.frame(cd.time(), cd.steps());
+      output.probeRow(cd.time(), evaluateProbes(scene));
       nextOutput += scene.output.interval;
-      printNow = true;  // a progress line per output frame too (throttled below), so short runs show progress
+      printNow = true;  // a progress line per output frame too (throttled), so short runs show progress
     }
     if (atEnd) {
       result.reason = tc.untilStatic ? StopReason::NotConverged : StopReason::EndTime;
       break;
     }
-    if (!opt.quiet && (printNow || (cd.steps() & 255) == 0)) {
-      const auto now = Clock::now();
-      const double since = std::chrono::duration<double>(now - lastPrint).count();
-      if (since >= opt.progressSeconds || (printNow && since >= 0.02 * opt.progressSeconds)) {
-        lastPrint = now;
-        const double wall = std::chrono::duration<double>(now - wall0).count();
-        const double eta = wall * (tEnd - cd.time()) / std::max(cd.time(), 1e-300);
+    if (!opt.quiet && (printNow || (cd.steps() & 255) == 0)) {  // the clock read every 256 steps at most
+      if (clock.progressDue(printNow)) {
+        const double eta = clock.seconds() * (tEnd - cd.time()) / std::max(cd.time(), 1e-300);
         fmt::print(
             "step {:>9}  t {:.5g}/{:.5g} s  dt {:.3g} s  KE {:.4g} J  U {:.4g} J  {}  {:.0f} s left{}\n",
             cd.steps(), cd.time(), tEnd, cd.lastDt(), E.kinetic, E.strain,
@@ -296,45 +152,34 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
       printNow = false;
     }
   }
-  const double wall = std::chrono::duration<double>(Clock::now() - wall0).count();
+  const double wall = clock.seconds();
   const long steps = cd.steps();
 
   if (result.reason == StopReason::Unstable) {
-    result.diagnosis = diagnoseInstability(scene, cd, good.steps, good.time, nonFinite, createdAtStop);
+    result.diagnosis = diagnoseInstability(scene, cd, good.step, good.time, nonFinite, createdAtStop);
     // Keep the last good state: on disk as a restartable state and as the last frame of the results.
     cd.restore(good);
     cd.evaluateForces(true);
-    writeStopState(opt, explicitState(cd, N), result);
-    if (!result.stateFile.empty()) result.diagnosis += " Saved in " + result.stateFile.string() + ".";
+    saveStopState(opt, explicitState(cd), result);
   } else {
     cd.evaluateForces(true);  // current forces for reactions, current strain energy for the summary
     if (result.reason == StopReason::Interrupted) {
-      writeStopState(opt, explicitState(cd, N), result);
       result.diagnosis =
           steps == 0 ? fmt::format("stopped during set-up, before the first step (t = {:.6g} s)", cd.time())
                      : fmt::format("stopped at step {} (t = {:.6g} s)", steps, cd.time());
-      result.diagnosis += result.stateFile.empty() ? "; the state could not be saved"
-                                                   : "; state saved in " + result.stateFile.string();
+      saveStopState(opt, explicitState(cd), result);
     }
   }
-  frames.write(cd.time(), cd.steps());
+  output.frame(cd.time(), cd.steps());
   result.probes = evaluateProbes(scene);
-  probeRows[0].push_back(cd.time());
-  for (std::size_t i = 0; i < probeNames.size(); ++i)
-    probeRows[i + 1].push_back(result.probes[probeNames[i]]);
-  {
-    std::vector<std::string> cols{"time"};
-    cols.insert(cols.end(), probeNames.begin(), probeNames.end());
-    frames.writer().writeTable("probes", cols, probeRows);
-    frames.writer().writeTable("energy",
-                               {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping",
-                                "balance_error", "dt", "kinetic_product", "energy_growth", "energy_created"},
-                               energyRows);
-  }
-  frames.writer().close();
+  output.probeRow(cd.time(), result.probes);
+  output.table("energy",
+               {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping",
+                "balance_error", "dt", "kinetic_product", "energy_growth", "energy_created"},
+               energyRows);
+  output.close();
 
   const EnergyLedger& E = cd.energy();
-  nlohmann::json s = summaryHead(scene, result);
   const long elements = model.membranes.count + model.cables.count;
   nlohmann::json st;
   st["steps"] = steps;
@@ -359,17 +204,12 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   st["added_mass"] = scene.massScaling.addedMass;
   st["added_mass_fraction"] = scene.massScaling.addedFraction();
   if (tc.untilStatic) st["converged"] = result.reason == StopReason::Static;
-  s["stats"] = st;
-  writeSummary(s, result, opt);
-
-  if (!opt.quiet) {
-    fmt::print(
-        "stop   {} after {} steps, t = {:.6g} s, {:.3g} s wall, {:.3g} M element updates/s, energy "
-        "balance error {:.2e}\n",
-        toString(result.reason), steps, cd.time(), wall,
-        1e-6 * st["element_updates_per_second"].get<double>(), E.balanceError());
-  }
-  printProbesAndDiagnosis(result, opt.quiet);
+  const std::string stopLine = fmt::format(
+      "stop   {} after {} steps, t = {:.6g} s, {:.3g} s wall, {:.3g} M element updates/s, energy balance "
+      "error {:.2e}",
+      toString(result.reason), steps, cd.time(), wall, 1e-6 * st["element_updates_per_second"].get<double>(),
+      E.balanceError());
+  finishRun(scene, result, opt, st, stopLine);
   return result;
 }
 

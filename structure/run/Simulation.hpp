@@ -1,7 +1,8 @@
 #pragma once
 // Simulation: runs a Scene with the central-difference integrator and does everything around the step loop:
 // output frames (HDF5 + XDMF), probes, energy monitoring, until-static detection, instability diagnosis with
-// the last good state kept on disk, Ctrl-C handling, and summary.json.
+// the last good state kept on disk, stop requests (RunOptions::stop), and summary.json; what it shares with
+// the dynamic-relaxation run is in RunCommon.
 
 #include <filesystem>
 #include <functional>
@@ -9,7 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "structure/run/Interrupt.hpp"
+#include "structure/run/StopReason.hpp"
+#include "structure/run/StopToken.hpp"
 #include "structure/scene/Scene.hpp"
 
 namespace fsi::structure {
@@ -18,10 +20,10 @@ struct RunOptions {
   std::filesystem::path outDir;
   bool quiet = false;
   double progressSeconds = 2.0;  ///< wall time between progress lines
+  /// A request on it stops the run cleanly (honoured during set-up, at every step and every DR iteration);
+  /// none: the run cannot be stopped from outside.
+  const StopToken* stop = nullptr;
 };
-
-enum class StopReason { EndTime, Static, NotConverged, Unstable, Interrupted };
-std::string toString(StopReason r);
 
 struct RunResult {
   StopReason reason = StopReason::EndTime;
@@ -29,14 +31,13 @@ struct RunResult {
   nlohmann::json summary;
   std::string diagnosis;            ///< what stopped the run (unstable, interrupted, not converged)
   std::filesystem::path stateFile;  ///< last_good_state.h5 / interrupted_state.h5 when one was written
-  int exitCode() const;
+  int exitCode() const { return structure::exitCode(reason); }
 };
 
 /// Evaluates every probe of the scene at the model's current state (forces must be current for reactions).
 std::map<std::string, double> evaluateProbes(const Scene& scene);
 
-/// Runs to the end (or static state, instability, interrupt); writes results into options.outDir. An
-/// interrupt request (Interrupt.hpp) is honoured during set-up, at every step and every DR iteration.
+/// Runs to the end (or static state, instability, a stop request); writes results into options.outDir.
 RunResult runSimulation(Scene& scene, const RunOptions& options);
 
 /// Dynamic relaxation of a `solver: {type: dynamic_relaxation}` scene (runSimulation dispatches to it).

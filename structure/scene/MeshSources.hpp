@@ -1,6 +1,6 @@
 #pragma once
 // Turns a scene's `meshes.<name>` entry into MeshData: a Gmsh file (`file:`) or a built-in generator
-// (`generator: {type: rectangle | disc | sphere_octant | cable_chain | strip | pillow, ...}`).
+// (`generator: {type: ..., ...}`, one of generatorKinds() in GeneratorKinds.hpp).
 
 #include <filesystem>
 #include <string>

@@ -1,0 +1,39 @@
+#pragma once
+// One probe of the scene's `probes:` section, as resolved at load time: which kind, on which nodes or
+// triangles, which component and how the values of several nodes/triangles reduce to one number.
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace fsi::structure {
+
+struct ProbeKind;
+
+/// Which component of a vector quantity a probe reports.
+enum class ProbeComponent {
+  X,
+  Y,
+  Z,
+  Magnitude,
+  Radial,  ///< distance from `center` (displacement: its change)
+};
+
+/// How the values of several nodes or triangles become the probe's one number.
+enum class ProbeReduce { Value, Mean, Max, Min, Sum };
+
+/// Which principal membrane stress a stress probe reports.
+enum class StressQuantity { MaxPrincipal, MinPrincipal };
+
+struct ProbeSpec {
+  std::string name;
+  const ProbeKind* kind = nullptr;  ///< its entry in probeKinds()
+  ProbeReduce reduce = ProbeReduce::Value;
+  std::vector<int> nodes;      ///< model node indices
+  std::vector<int> triangles;  ///< model membrane element indices
+  ProbeComponent component = ProbeComponent::X;
+  std::array<double, 3> center{0, 0, 0};
+  StressQuantity quantity = StressQuantity::MaxPrincipal;
+};
+
+}  // namespace fsi::structure

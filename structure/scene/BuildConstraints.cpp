@@ -1,0 +1,78 @@
+#include "structure/scene/BuildConstraints.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "structure/scene/ReadTimeFunction.hpp"
+
+namespace fsi::structure {
+
+Constraints buildConstraints(const YamlMap& top, const Model& model, const SetResolver& sets) {
+  Constraints constraints;
+  const std::string& fileName = top.file();
+  if (top.has("constraints")) {
+    const YAML::Node list = top.raw("constraints");
+    if (!list.IsSequence()) top.failAt("constraints", "expected a list");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      YamlMap c(list[i], fileName, fmt::format("constraints[{}]", i));
+      if (c.has("fix")) {
+        const auto nodes = sets.nodes(c.required("nodes"), c.childPath("nodes"));
+        for (const auto& comp : c.strings("fix")) {
+          static const std::vector<std::string> valid{"x", "y", "z", "all"};
+          if (std::find(valid.begin(), valid.end(), comp) == valid.end())
+            c.failAt("fix", fmt::format("'{}' is not a component; valid: x, y, z, all", comp));
+          for (int n : nodes)
+            for (int k = 0; k < 3; ++k)
+              if (comp == "all" || comp == valid[k]) constraints.fixedDofs.push_back(3 * n + k);
+        }
+        c.finish({"nodes", "fix"});
+      } else if (c.has("symmetry")) {
+        YamlMap s = c.map("symmetry");
+        const auto pt = s.vec3("point", {0, 0, 0});
+        auto n = s.vec3("normal");
+        const double tol = s.number("tolerance", 1e-9);
+        s.finish({"point", "normal", "tolerance"});
+        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(len > 0)) s.failAt("normal", "must not be zero");
+        for (auto& v : n) v /= len;
+        int axis = -1;
+        for (int k = 0; k < 3; ++k)
+          if (std::abs(std::abs(n[k]) - 1.0) < 1e-14) axis = k;
+        int count = 0;
+        const Nodes& N = model.nodes;
+        for (int j = 0; j < N.count; ++j) {
+          double d = 0;
+          for (int k = 0; k < 3; ++k) d += (N.X[3 * j + k] - pt[k]) * n[k];
+          if (std::abs(d) > tol) continue;
+          ++count;
+          if (axis >= 0)
+            constraints.fixedDofs.push_back(3 * j + axis);
+          else
+            constraints.sliders.push_back({j, n});
+        }
+        if (count == 0) c.failAt("symmetry", "no node lies on this plane (check point, normal, tolerance)");
+        c.finish({"symmetry"});
+      } else if (c.has("prescribe")) {
+        const auto nodes = sets.nodes(c.required("nodes"), c.childPath("nodes"));
+        YamlMap p = c.map("prescribe");
+        const std::string componentName = p.choice("component", {"x", "y", "z"});
+        const int comp = componentName == "x" ? 0 : componentName == "y" ? 1 : 2;
+        const double amp = p.number("amplitude");
+        const TimeFunction fn = readTimeFunction(p, "function");
+        p.finish({"component", "amplitude", "function"});
+        for (int n : nodes) constraints.prescribed.push_back({n, comp, amp, fn});
+        c.finish({"nodes", "prescribe"});
+      } else {
+        c.fail("a constraint needs one of: fix (with nodes), symmetry, prescribe (with nodes)");
+      }
+    }
+    auto& f = constraints.fixedDofs;
+    std::sort(f.begin(), f.end());
+    f.erase(std::unique(f.begin(), f.end()), f.end());
+  }
+  return constraints;
+}
+
+}  // namespace fsi::structure

@@ -1,0 +1,44 @@
+#pragma once
+// The run settings a scene gives its solver: time control, the integrator choice and the output. Plain
+// data, read from the scene's `time:`, `solver:` and `output:` sections (ReadControls.cpp).
+
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "structure/integrate/CentralDifference.hpp"
+#include "structure/integrate/DynamicRelaxation.hpp"
+
+namespace fsi::structure {
+
+struct TimeControl {
+  double endTime = 0;  ///< simulated end time (or the cap for until-static runs)
+  bool untilStatic = false;
+  double staticTolerance = 1e-8;  ///< stop when KE/strain energy stays below this
+  long monitorEvery = 100;        ///< steps between energy checks
+  double energyTolerance = 0.05;  ///< relative energy-balance error that counts as instability
+  double massScalingMinDt = 0;    ///< > 0: selective mass scaling to this step
+  CentralDifferenceSettings integrator;
+};
+
+/// Which integrator a scene runs: explicit dynamics (default) or dynamic relaxation to a static state.
+struct SolverControl {
+  enum class Type { ExplicitDynamics, DynamicRelaxation };
+  Type type = Type::ExplicitDynamics;
+  RelaxationSettings relaxation;
+  std::string method;  ///< label of the DR variant (KDR, KDR1, oDR, mdDR, ...)
+};
+
+struct OutputControl {
+  double interval = 0;  ///< simulated time between frames; 0 = first and last only
+  std::set<std::string> fields;
+};
+
+inline const std::vector<std::string>& allOutputFields() {
+  static const std::vector<std::string> f{"displacement",     "velocity",      "residual",   "stress",
+                                          "principal_stress", "wrinkle_state", "cable_force"};
+  return f;
+}
+
+}  // namespace fsi::structure

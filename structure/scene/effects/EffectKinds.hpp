@@ -1,0 +1,53 @@
+#pragma once
+// The registry of the scene's `effects:`: every effect kind is one entry {name, keys, description, build}.
+// The valid names under `effects:` (and their "did you mean") come from this table, and each entry's keys
+// from its own file. Adding an effect = one file with its build function + one registration in
+// EffectRegistry.cpp (docs/ARCHITECTURE.md, "How to add an effect"). Building runs once, at load time: no
+// per-step cost.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "structure/effects/Effect.hpp"
+#include "structure/integrate/CentralDifference.hpp"
+#include "structure/model/Model.hpp"
+#include "structure/scene/SetResolver.hpp"
+#include "structure/scene/YamlAccess.hpp"
+
+namespace fsi::structure {
+
+/// Damping that the element force kernels apply themselves (stiffness-proportional, bulk viscosity): the
+/// effects only set it; the membrane and cable forces are built with it.
+struct ElementDamping {
+  double beta = 0;    ///< stiffness-proportional Rayleigh damping [s]
+  double bulkB1 = 0;  ///< linear bulk viscosity coefficient
+};
+
+/// What an effect's build function may read and add to.
+struct EffectContext {
+  Model& model;
+  const SetResolver& sets;
+  CentralDifferenceSettings& integrator;        ///< mass damping lives in the integrator
+  ElementDamping& elementDamping;               ///< read by the element forces
+  std::vector<std::unique_ptr<Effect>>& loads;  ///< effects that add forces, in build order
+};
+
+struct EffectKind {
+  std::string name;                ///< the key under `effects:`
+  std::vector<std::string> keys;   ///< the keys of one entry
+  std::string description;         ///< one line, for docs and messages
+  bool several = false;            ///< the value may be a list of entries (pressure on several sets, ...)
+  std::string relaxationConflict;  ///< non-empty: refused in a dynamic-relaxation scene, with this reason
+  /// Reads one entry (calling entry.finish(keys)) and adds what it makes to the context.
+  void (*build)(const YamlMap& entry, EffectContext& ctx) = nullptr;
+};
+
+/// Every effect kind, in the order they are built (which fixes the order forces are summed in).
+const std::vector<EffectKind>& effectKinds();
+
+/// Builds the `effects:` section of the top-level map `top`; appends the names of the effects built to
+/// `enabled`.
+void buildEffects(const YamlMap& top, bool relaxation, EffectContext& ctx, std::vector<std::string>& enabled);
+
+}  // namespace fsi::structure

@@ -1,0 +1,65 @@
+#include <fmt/format.h>
+
+#include "structure/scene/effects/EffectKinds.hpp"
+
+namespace fsi::structure {
+
+// The entries, one per effect file. Register a new effect here: its function below and in the table.
+EffectKind massDampingEffect();
+EffectKind stiffnessDampingEffect();
+EffectKind bulkViscosityEffect();
+EffectKind gravityEffect();
+EffectKind pressureEffect();
+EffectKind nodalForcesEffect();
+EffectKind chordwisePressureEffect();  // PressureTableEffect.cpp
+EffectKind lineDragEffect();           // DragEffects.cpp
+EffectKind bodyDragEffect();           // DragEffects.cpp
+
+const std::vector<EffectKind>& effectKinds() {
+  static const std::vector<EffectKind> kinds{
+      massDampingEffect(),       stiffnessDampingEffect(), bulkViscosityEffect(),
+      gravityEffect(),           pressureEffect(),         nodalForcesEffect(),
+      chordwisePressureEffect(), lineDragEffect(),         bodyDragEffect()};
+  return kinds;
+}
+
+namespace {
+
+// An effect that may be given several times takes one entry or a list of them.
+std::vector<YamlMap> entriesOf(const YamlMap& fx, const std::string& key) {
+  const YAML::Node n = fx.raw(key);
+  std::vector<YamlMap> out;
+  if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+      out.emplace_back(n[i], fx.file(), fmt::format("{}[{}]", fx.childPath(key), i));
+  } else {
+    out.emplace_back(n, fx.file(), fx.childPath(key));
+  }
+  return out;
+}
+
+}  // namespace
+
+void buildEffects(const YamlMap& top, bool relaxation, EffectContext& ctx,
+                  std::vector<std::string>& enabled) {
+  if (!top.has("effects")) return;
+  YamlMap fx = top.map("effects");
+  const auto& kinds = effectKinds();
+  if (relaxation)
+    for (const EffectKind& k : kinds)
+      if (!k.relaxationConflict.empty() && fx.has(k.name)) fx.failAt(k.name, k.relaxationConflict);
+  std::vector<std::string> names;
+  for (const EffectKind& k : kinds) {
+    names.push_back(k.name);
+    if (!fx.has(k.name)) continue;
+    if (k.several) {
+      for (const YamlMap& e : entriesOf(fx, k.name)) k.build(e, ctx);
+    } else {
+      k.build(fx.map(k.name), ctx);
+    }
+    enabled.push_back(k.name);
+  }
+  fx.finish(names);
+}
+
+}  // namespace fsi::structure

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "structure/elements/MembraneForces.hpp"
 #include "structure/io/ResultsWriter.hpp"
 #include "structure/io/SceneFrames.hpp"
 #include "structure/io/StateFile.hpp"
@@ -130,7 +131,7 @@ std::map<std::string, double> evaluateProbes(const Scene& scene) {
         break;
       }
       case ProbeSpec::Type::Stress:
-        if (!haveStress && scene.membrane) scene.membrane->evaluate(N.x.data(), stress), haveStress = true;
+        if (!haveStress) membraneStresses(model.membranes, N.x.data(), stress), haveStress = true;
         for (int e : p.triangles)
           vals.push_back(stress.principal[2 * e + (p.quantity == "min_principal" ? 1 : 0)]);
         break;

@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "structure/effects/ExternalLoads.hpp"
+#include "structure/elements/ElementKind.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
+#include "structure/material/MaterialTypes.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/MeshSources.hpp"
 #include "structure/scene/YamlAccess.hpp"
@@ -359,51 +361,10 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   YamlMap top(root, fileName, "");
   scene.title = top.string("title", "");
 
-  // Materials.
-  std::map<std::string, int> membraneIdx, cableIdx;
-  std::vector<MembraneMaterial> membraneMats;
-  std::vector<CableMaterial> cableMats;
-  {
-    YamlMap mats = top.map("materials");
-    for (const auto& name : mats.keys()) {
-      YamlMap m = mats.map(name);
-      const std::string type = m.choice("type", {"membrane", "cable"});
-      if (type == "membrane") {
-        MembraneMaterial mm;
-        mm.name = name;
-        mm.young = m.number("young");
-        mm.poisson = m.number("poisson");
-        mm.thickness = m.number("thickness");
-        mm.density = m.number("density");
-        mm.wrinkling = m.boolean("wrinkling", true);
-        m.finish({"type", "young", "poisson", "thickness", "density", "wrinkling"});
-        if (!(mm.young > 0)) m.failAt("young", "must be > 0");
-        if (!(mm.poisson >= 0 && mm.poisson < 0.5)) m.failAt("poisson", "must be in [0, 0.5)");
-        if (!(mm.thickness > 0)) m.failAt("thickness", "must be > 0");
-        if (!(mm.density > 0) || !std::isnormal(mm.density))
-          m.failAt("density",
-                   "must be > 0 and at least 2.2e-308 (a smaller, subnormal density makes the lumped masses "
-                   "underflow to 0)");
-        membraneIdx[name] = int(membraneMats.size());
-        membraneMats.push_back(mm);
-      } else {
-        CableMaterial cm;
-        cm.name = name;
-        cm.young = m.number("young");
-        cm.area = m.number("area");
-        cm.density = m.number("density");
-        m.finish({"type", "young", "area", "density"});
-        if (!(cm.young > 0)) m.failAt("young", "must be > 0");
-        if (!(cm.area > 0)) m.failAt("area", "must be > 0");
-        if (!(cm.density > 0) || !std::isnormal(cm.density))
-          m.failAt("density",
-                   "must be > 0 and at least 2.2e-308 (a smaller, subnormal density makes the lumped masses "
-                   "underflow to 0)");
-        cableIdx[name] = int(cableMats.size());
-        cableMats.push_back(cm);
-      }
-    }
-  }
+  // Materials, through the material-type registry (structure/material/MaterialTypes).
+  MaterialTable materials = readMaterials(top.map("materials"));
+  const std::map<std::string, int>& membraneIdx = materials.index["membrane"];
+  const std::map<std::string, int>& cableIdx = materials.index["cable"];
   auto materialRef = [&](const YamlMap& m, const std::string& key, const std::map<std::string, int>& idx,
                          const std::string& kind) {
     const std::string n = m.string(key);
@@ -446,7 +407,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     }
   }
   try {
-    scene.model = std::make_unique<Model>(buildModel(std::move(inputs), membraneMats, cableMats));
+    scene.model = std::make_unique<Model>(buildModel(std::move(inputs), materials.membrane, materials.cable));
   } catch (const InputError& e) {
     const std::string what = e.what();
     std::string where = scene.file.string();
@@ -618,8 +579,7 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
   }
 
   // Effects: only what is listed here is ever computed.
-  MembraneViscosity mv;
-  CableViscosity cv;
+  ElementDamping damping;  // the same for every element kind
   std::vector<std::unique_ptr<Effect>> loads;
   if (top.has("effects")) {
     YamlMap fx = top.map("effects");
@@ -635,16 +595,16 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     }
     if (fx.has("stiffness_damping")) {
       YamlMap d = fx.map("stiffness_damping");
-      mv.beta = cv.beta = d.number("beta");
+      damping.beta = d.number("beta");
       d.finish({"beta"});
-      if (!(mv.beta >= 0)) d.failAt("beta", "must be >= 0");
+      if (!(damping.beta >= 0)) d.failAt("beta", "must be >= 0");
       scene.enabledEffects.push_back("stiffness_damping");
     }
     if (fx.has("bulk_viscosity")) {
       YamlMap d = fx.map("bulk_viscosity");
-      mv.bulkB1 = cv.bulkB1 = d.number("b1", 0.06);
+      damping.bulkB1 = d.number("b1", 0.06);
       d.finish({"b1"});
-      if (!(mv.bulkB1 >= 0)) d.failAt("b1", "must be >= 0");
+      if (!(damping.bulkB1 >= 0)) d.failAt("b1", "must be >= 0");
       scene.enabledEffects.push_back("bulk_viscosity");
     }
     if (fx.has("gravity")) {
@@ -693,18 +653,12 @@ Scene loadRoot(YAML::Node root, const std::string& fileName, const std::filesyst
     }
     fx.finish({"mass_damping", "stiffness_damping", "bulk_viscosity", "gravity", "pressure", "nodal_forces"});
   }
-  if (model.membranes.count > 0) {
-    auto m = std::make_unique<MembraneForces>(model.membranes, mv);
-    scene.membrane = m.get();
-    scene.effects.push_back(std::move(m));
-    scene.enabledEffects.insert(scene.enabledEffects.begin(), "membrane");
-  }
-  if (model.cables.count > 0) {
-    auto c = std::make_unique<CableForces>(model.cables, cv);
-    scene.cable = c.get();
-    scene.effects.push_back(std::move(c));
-    scene.enabledEffects.insert(scene.enabledEffects.begin(), "cable");
-  }
+  // Element forces: one effect per element kind the model has, in registry order, ahead of the loads.
+  for (const ElementKind* kind : elementKinds())
+    if (kind->count(model) > 0) {
+      scene.effects.push_back(kind->makeForces(model, damping));
+      scene.enabledEffects.insert(scene.enabledEffects.begin(), kind->name());
+    }
   for (auto& l : loads) scene.effects.push_back(std::move(l));
 
   // Coupling: the triangles that receive the flow's pressure field (an effect like any other).

@@ -1,4 +1,4 @@
-#include "structure/effects/CableForces.hpp"
+#include "structure/elements/CableForces.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -63,13 +63,17 @@ void CableForces::addForces(ForceContext& ctx) const {
 }
 
 void CableForces::evaluate(const double* x, std::vector<double>& tension) const {
-  tension.assign(el_.count, 0.0);
-  for (const CableBlock& b : el_.blocks)
+  cableTensions(el_, x, tension);
+}
+
+void cableTensions(const Cables& el, const double* x, std::vector<double>& tension) {
+  tension.assign(el.count, 0.0);
+  for (const CableBlock& b : el.blocks)
     for (int e = b.begin; e < b.end; ++e) {
-      const int i = el_.conn[2 * e], j = el_.conn[2 * e + 1];
+      const int i = el.conn[2 * e], j = el.conn[2 * e + 1];
       double L2 = 0;
       for (int k = 0; k < 3; ++k) L2 += (x[3 * j + k] - x[3 * i + k]) * (x[3 * j + k] - x[3 * i + k]);
-      tension[e] = b.axialStiffness * std::max(0.0, (std::sqrt(L2) - el_.restLength[e]) / el_.restLength[e]);
+      tension[e] = b.axialStiffness * std::max(0.0, (std::sqrt(L2) - el.restLength[e]) / el.restLength[e]);
     }
 }
 

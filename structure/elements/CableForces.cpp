@@ -36,8 +36,10 @@ void cableBlock(const Cables& el, const CableBlock& blk, const CableViscosity& v
       const double rate = ((v[3 * j] - v[3 * i]) * d[0] + (v[3 * j + 1] - v[3 * i + 1]) * d[1] +
                            (v[3 * j + 2] - v[3 * i + 2]) * d[2]) *
                           iL / L0;
-      const double c = 1.0 / el.invWaveSpeed[e];
-      T += (visc.beta * blk.axialStiffness + visc.bulkB1 * blk.density * c * L0 * blk.area) * rate;
+      // Bulk viscosity b1 ρ c A L0 ε̇ with the element's own ρ and c: c² = E/ρ gives ρ c = E/c = E ·
+      // invWaveSpeed, which stays right when mass scaling raised ρ by s (and lowered c). The unscaled ρ would
+      // give a scaled cable the damping ratio b1/s instead of the b1 its damped stable step assumes.
+      T += (visc.beta + visc.bulkB1 * el.invWaveSpeed[e] * L0) * blk.axialStiffness * rate;
     }
     const double s = T * iL;
     for (int k = 0; k < 3; ++k) {

@@ -11,7 +11,7 @@
 
 namespace fsi::structure {
 
-/// Rayleigh β and bulk viscosity b1 on the strain rate (ρ, c the element's own).
+/// Rayleigh β and bulk viscosity b1 on the strain rate (ρ, c the element's own after mass scaling).
 using CableViscosity = ElementDamping;
 
 class CableForces final : public Effect {

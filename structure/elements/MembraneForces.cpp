@@ -83,9 +83,12 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
       const double r22 = k.f2[0] * g2[0] + k.f2[1] * g2[1] + k.f2[2] * g2[2];
       const double r12 = k.f1[0] * g2[0] + k.f1[1] * g2[1] + k.f1[2] * g2[2] + k.f2[0] * g1[0] +
                          k.f2[1] * g1[1] + k.f2[2] * g1[2];  // 2 Ė12
+      // Bulk viscosity b1 ρ c L_e tr(Ė) with the element's own ρ and c: mass scaling raises ρ by s and lowers
+      // c by √s, and c_d² = c11/ρ gives ρ c = c11/c = c11 · invWaveSpeed, scaled or not. With the unscaled
+      // density a scaled element would get the damping ratio b1/s instead of the b1 the damped step below
+      // assumes.
       const double le = std::sqrt(le2);
-      const double c = 1.0 / iws[e];
-      const double bulk = visc.bulkB1 * blk.density * c * le * (r11 + r22);
+      const double bulk = visc.bulkB1 * blk.c11 * iws[e] * le * (r11 + r22);
       S[0] += visc.beta * blk.c11 * (r11 + blk.poisson * r22) + bulk;
       S[1] += visc.beta * blk.c11 * (r22 + blk.poisson * r11) + bulk;
       S[2] += visc.beta * 0.5 * blk.c11 * (1.0 - blk.poisson) * r12;

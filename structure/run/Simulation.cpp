@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "structure/elements/ElementKind.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/io/ResultsWriter.hpp"
 #include "structure/io/SceneFrames.hpp"
@@ -336,7 +337,8 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
 
   const EnergyLedger& E = cd.energy();
   nlohmann::json s = summaryHead(scene, result);
-  const long elements = model.membranes.count + model.cables.count;
+  long elements = 0;  // element updates per step, every kind
+  for (const ElementKind* kind : elementKinds()) elements += kind->count(model);
   nlohmann::json st;
   st["steps"] = steps;
   st["simulated_time"] = cd.time();

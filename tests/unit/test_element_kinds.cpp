@@ -68,3 +68,44 @@ TEST(ElementKinds, CountAndLumpedMassOfAMixedModel) {
   EXPECT_EQ(findElementKind("cable")->describe(m, 0).rfind("cable ", 0), 0u);
   EXPECT_EQ(findElementKind("membrane")->describe(m, 0).rfind("triangle ", 0), 0u);
 }
+
+namespace {
+
+std::string materialError(const std::string& film) {
+  const std::string yaml = "materials:\n  film: " + film + R"(
+meshes:
+  sheet:
+    generator: {type: rectangle, size: [1, 1], divisions: [2, 2]}
+    material: film
+time: {end: 1.0e-3}
+)";
+  try {
+    loadSceneFromString(yaml, "m.yaml");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
+}  // namespace
+
+// The scene's materials block reads through the registry: its types and each type's keys are the valid ones,
+// with "did you mean" and located messages.
+TEST(MaterialTypes, SceneMaterialsComeFromTheRegistry) {
+  EXPECT_EQ(materialError("{type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}"),
+            "");
+  const std::string type = materialError("{type: membrn, young: 1.0e8}");
+  EXPECT_NE(type.find("m.yaml:2:"), std::string::npos) << type;
+  EXPECT_NE(type.find("materials.film.type"), std::string::npos) << type;
+  EXPECT_NE(type.find("did you mean 'membrane'"), std::string::npos) << type;
+  EXPECT_NE(type.find("cable"), std::string::npos) << type;  // lists the registered types
+  const std::string key = materialError(
+      "{type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000, wrinklng: false}");
+  EXPECT_NE(key.find("unknown key 'wrinklng'"), std::string::npos) << key;
+  EXPECT_NE(key.find("did you mean 'wrinkling'"), std::string::npos) << key;
+  const std::string cableKey =
+      materialError("{type: cable, young: 1.0e9, area: 1.0e-4, density: 1000, wrinkling: false}");
+  EXPECT_NE(cableKey.find("unknown key 'wrinkling'"), std::string::npos) << cableKey;  // a membrane key
+  const std::string value = materialError("{type: cable, young: 1.0e9, area: -1, density: 1000}");
+  EXPECT_NE(value.find("materials.film.area: must be > 0"), std::string::npos) << value;
+}

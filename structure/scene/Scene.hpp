@@ -11,10 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "structure/effects/CableForces.hpp"
 #include "structure/effects/Effect.hpp"
 #include "structure/effects/InterfacePressure.hpp"
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/integrate/CentralDifference.hpp"
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/MassScaling.hpp"
 #include "structure/model/Model.hpp"
@@ -28,8 +27,6 @@ struct Scene {
   std::string title;
   std::unique_ptr<Model> model;
   std::vector<std::unique_ptr<Effect>> effects;
-  const MembraneForces* membrane = nullptr;  ///< owned by `effects`; null without triangles
-  const CableForces* cable = nullptr;
   InterfacePressure* interfacePressure = nullptr;  ///< set when the scene declares a `coupling` interface
   WindowLoad interfaceLoadRule = WindowLoad::Mean;
   Constraints constraints;

@@ -1,6 +1,7 @@
 #pragma once
-// The scene's `materials:` section, read through the material-type registry (structure/material/MaterialTypes:
-// valid types, their keys and checks), and the references to materials from the meshes.
+// The scene's `materials:` section, read through the material-type registry
+// (structure/material/MaterialTypes: valid types, their keys and checks), and the references to materials
+// from the meshes.
 
 #include <map>
 #include <string>

@@ -22,6 +22,9 @@
 #include "coupling/scheme/CouplingScheme.hpp"
 #include "coupling/scheme/Subcycling.hpp"
 #include "coupling/scheme/TimeInterpolation.hpp"
+#include "coupling/scheme/acceleration/Aitken.hpp"
+#include "coupling/scheme/acceleration/ConstantRelaxation.hpp"
+#include "coupling/scheme/acceleration/IqnIls.hpp"
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::coupling;
@@ -211,12 +214,15 @@ Problem stringModel(int n, double mu, double omega1Dt, double forcing = 0.01, do
   return p;
 }
 
+// Makes a fresh acceleration for one run.
+using AccelerationFactory = std::function<std::unique_ptr<Acceleration>()>;
+
 struct RunSetup {
   SchemeKind scheme = SchemeKind::Implicit;
   double dt = 1.0;
   int windows = 100;
   int extrapolationOrder = 1;
-  AccelerationConfig acceleration;
+  AccelerationFactory acceleration;
   double relTol = 1e-8;
   int maxIterations = 500;
   Kinematics kinematics = Kinematics::Newmark;
@@ -268,8 +274,7 @@ Trace simulate(const Problem& p, const RunSetup& s) {
   cfg.relativeTolerance = s.relTol;
   cfg.absoluteTolerance = 1e-14;
   cfg.maxIterations = s.maxIterations;
-  CouplingScheme scheme(cfg, structure,
-                        s.scheme == SchemeKind::Implicit ? makeAcceleration(s.acceleration) : nullptr);
+  CouplingScheme scheme(cfg, structure, s.scheme == SchemeKind::Implicit ? s.acceleration() : nullptr);
 
   const double limit = s.blowUp * std::max(maxNorm(monolithic(p, s.dt, s.windows)), 1e-300);
   Trace tr;
@@ -287,22 +292,18 @@ Trace simulate(const Problem& p, const RunSetup& s) {
   return tr;
 }
 
-AccelerationConfig constant(double omega) {
-  AccelerationConfig a;
-  a.kind = AccelerationKind::Constant;
-  a.omega = omega;
-  return a;
+AccelerationFactory constant(double omega) {
+  return [omega] { return std::make_unique<ConstantRelaxation>(omega); };
 }
-AccelerationConfig aitken() {
-  AccelerationConfig a;
-  a.kind = AccelerationKind::Aitken;
-  return a;
+AccelerationFactory aitken() {
+  return [] { return std::make_unique<Aitken>(); };
 }
-AccelerationConfig iqn(int reuse = 0) {
-  AccelerationConfig a;
-  a.kind = AccelerationKind::IqnIls;
-  a.iqn.reuseSteps = reuse;
-  return a;
+AccelerationFactory iqn(int reuse = 0) {
+  return [reuse] {
+    IqnIlsOptions o;
+    o.reuseSteps = reuse;
+    return std::make_unique<IqnIls>(o);
+  };
 }
 // Seeded, so the result does not depend on which other tests ran before (Eigen's Random uses rand()).
 MatrixXd randomOrthogonal(int n) {
@@ -470,7 +471,7 @@ TEST(CouplingScheme, ImplicitCallSequenceAndCheckpointFlags) {
   cfg.timeWindowSize = dt;
   cfg.endTime = 3 * dt;
   cfg.relativeTolerance = 1e-10;
-  CouplingScheme scheme(cfg, structure, makeAcceleration(iqn()));
+  CouplingScheme scheme(cfg, structure, iqn()());
 
   EXPECT_THROW(scheme.advance(VectorXd::Zero(1)), CouplingError);
   EXPECT_FALSE(scheme.isCouplingOngoing());
@@ -535,11 +536,11 @@ TEST(CouplingScheme, RejectsBadConfiguration) {
   const Problem p = piston(1.0, 0.1);
   NewmarkStructure s(p.ms, p.c, p.k, p.x0, p.v0, p.f0());
   CouplingConfig cfg;
-  EXPECT_THROW(CouplingScheme(cfg, s, makeAcceleration(iqn())), std::invalid_argument);  // no window size
+  EXPECT_THROW(CouplingScheme(cfg, s, iqn()()), std::invalid_argument);  // no window size
   cfg.timeWindowSize = 1.0;
   EXPECT_THROW(CouplingScheme(cfg, s), std::invalid_argument);  // implicit without acceleration
   cfg.extrapolationOrder = 3;
-  EXPECT_THROW(CouplingScheme(cfg, s, makeAcceleration(iqn())), std::invalid_argument);
+  EXPECT_THROW(CouplingScheme(cfg, s, iqn()()), std::invalid_argument);
 }
 
 TEST(CouplingScheme, NonConvergenceIsReportedOrThrown) {
@@ -552,7 +553,7 @@ TEST(CouplingScheme, NonConvergenceIsReportedOrThrown) {
     cfg.maxIterations = 3;
     cfg.relativeTolerance = 1e-12;
     cfg.throwOnNonConvergence = doThrow;
-    CouplingScheme scheme(cfg, s, makeAcceleration(constant(0.01)));  // far too slow for 3 iterations
+    CouplingScheme scheme(cfg, s, constant(0.01)());  // far too slow for 3 iterations
     scheme.initialize(0.0, p.x0, p.f0());
     if (doThrow) {
       EXPECT_THROW(runTimeWindow(scheme, fluid), CouplingError);
@@ -573,7 +574,7 @@ TEST(CouplingCheckpoint, RestoredIterationReproducesTheFirstPass) {
   CouplingConfig cfg;
   cfg.timeWindowSize = 1.0;
   cfg.relativeTolerance = 1e-10;
-  CouplingScheme scheme(cfg, structure, makeAcceleration(iqn()));
+  CouplingScheme scheme(cfg, structure, iqn()());
   scheme.initialize(0.0, p.x0, p.f0());
   for (int w = 0; w < 5; ++w) runTimeWindow(scheme, fluid);  // a non-trivial state with history
 
@@ -644,7 +645,7 @@ TEST(CouplingImplicit, ReproducesMonolithicNewmarkAboveTheStaggeredLimit) {
   for (const double mu : {10.0, 100.0}) {
     const Problem p = piston(mu, 0.1, 0.5);
     const double lambda = p.iterationSpectrum(1.0)(0);
-    for (const AccelerationConfig& a : {constant(1.4 / (1.0 + lambda)), aitken(), iqn()}) {
+    for (const AccelerationFactory& a : {constant(1.4 / (1.0 + lambda)), aitken(), iqn()}) {
       RunSetup s;
       s.windows = 300;
       s.acceleration = a;
@@ -701,7 +702,7 @@ TEST(CouplingImplicit, MultiDofStringMatchesMonolithicWithEveryAcceleration) {
     const Problem p = stringModel(30, mu, 0.1);
     EXPECT_GT((p.ma - MatrixXd(p.ma.diagonal().asDiagonal())).norm(), 0.5 * p.ma.norm());  // really full
     const double omega = optimalOmega(p.iterationSpectrum(1.0));
-    for (const AccelerationConfig& a : {constant(omega), aitken(), iqn(), iqn(8)}) {
+    for (const AccelerationFactory& a : {constant(omega), aitken(), iqn(), iqn(8)}) {
       RunSetup s;
       s.windows = 60;
       s.acceleration = a;
@@ -925,7 +926,7 @@ TEST(CouplingTable, IterationsPerWindowOverAddedMassRatio) {
     const Problem p = stringModel(n, mu, 0.1);
     const VectorXd spectrum = p.iterationSpectrum(1.0);
     const double omega = optimalOmega(spectrum);
-    auto cell = [&](const AccelerationConfig& a) {
+    auto cell = [&](const AccelerationFactory& a) {
       RunSetup s;
       s.windows = windows;
       s.acceleration = a;

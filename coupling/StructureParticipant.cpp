@@ -1,5 +1,7 @@
 #include "coupling/StructureParticipant.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -59,10 +61,10 @@ class StructureParticipant::Substeps final : public StructureStepper {
   void checkStableStep(double dt) const {
     const double stable = stableTimeStep();
     if (stable > 0 && dt / stable <= 1e9) return;
-    throw StructureUnstable("the stable step fell to " + std::to_string(stable) + " s for a window of " +
-                            std::to_string(dt) + " s; " +
-                            structure::diagnoseInstability(scene_, cd_, checkpoint_.steps, checkpoint_.time,
-                                                           /*nonFinite=*/!std::isfinite(stable)));
+    throw StructureUnstable(
+        fmt::format("the stable step fell to {:g} s for a window of {:g} s; ", stable, dt) +
+        structure::diagnoseInstability(scene_, cd_, checkpoint_.steps, checkpoint_.time,
+                                       /*nonFinite=*/!std::isfinite(stable)));
   }
 
   Eigen::VectorXd interfaceDisplacement() const override {

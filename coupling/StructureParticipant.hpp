@@ -8,8 +8,8 @@
 // over the structure's CentralDifference, and SubcycledStructure takes N = max(subcycles, ceil(Δt /
 // Δt_stable)) equal substeps per window, Δt_stable from the window's start state, with the window's load
 // filled in by TimeInterpolation (the scene's `load_in_window`). Before every structural step the participant
-// writes the load of that instant into the InterfaceLoad it owns; the scene's InterfacePressure effect only
-// reads it.
+// writes the load of that instant into the InterfaceLoad it owns; the InterfacePressure effect it adds to the
+// integrator only reads it.
 //
 // The load is a pressure per interface node (follower load on the current geometry) or nodal forces, 3 per
 // interface node (the conservative transfer of the fluid's face forces; what the OpenFOAM adapter uses).

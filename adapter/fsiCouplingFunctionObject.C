@@ -198,6 +198,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
                                      << exit(FatalIOError);
       }
       structure_->setMinSubcycles(int(o.integer("subcycles")));
+      // The fluid's load arrives as nodal forces (structureLoads: the conservative transfer Hᵀ f).
+      structure_->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
       // Projection structure -> each fluid patch, on the reference geometry.
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));

@@ -37,9 +37,9 @@ double seconds(Clock::time_point a, Clock::time_point b) {
 }
 
 fsi::coupling::MassMatrix projectionKind(const word& kind) {
-  if (kind == "lumped") return fsi::coupling::MassMatrix::Lumped;
-  if (kind == "dual") return fsi::coupling::MassMatrix::Dual;
-  return fsi::coupling::MassMatrix::Consistent;  // the option table allows only these three
+  fsi::coupling::MassMatrix m = fsi::coupling::MassMatrix::Consistent;
+  fsi::coupling::massMatrixFromName(kind, m);  // the option table allows only these names
+  return m;
 }
 
 // h:mm:ss, for wall time and ETA on the progress line.

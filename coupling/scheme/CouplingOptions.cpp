@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "coupling/mapping/L2Projection.hpp"
 #include "coupling/scheme/acceleration/AccelerationRegistry.hpp"
 #include "structure/scene/NearestName.hpp"
 
@@ -427,8 +428,8 @@ OptionSchema couplingOptionSchema() {
   coupled.push_back(maxIterations);
   coupled.push_back(integerOption("extrapolation", "1", Bound{0, true}, Bound{2, true},
                                   "predictor order of a window's first displacement (staggered: stability)"));
-  coupled.push_back(wordSpec("projection", OptionType::Choice, "consistent", {"consistent", "lumped", "dual"},
-                             "L2 projection between the non-matching interface meshes"));
+  coupled.push_back(wordSpec("projection", OptionType::Choice, toString(MassMatrix::Consistent),
+                             massMatrixNames(), "L2 projection between the non-matching interface meshes"));
   OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
                                        "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";

@@ -37,9 +37,9 @@ double seconds(Clock::time_point a, Clock::time_point b) {
 }
 
 fsi::coupling::MassMatrix projectionKind(const word& kind) {
-  if (kind == "lumped") return fsi::coupling::MassMatrix::Lumped;
-  if (kind == "dual") return fsi::coupling::MassMatrix::Dual;
-  return fsi::coupling::MassMatrix::Consistent;  // the option table allows only these three
+  fsi::coupling::MassMatrix m = fsi::coupling::MassMatrix::Consistent;
+  fsi::coupling::massMatrixFromName(kind, m);  // the option table allows only these names
+  return m;
 }
 
 // h:mm:ss, for wall time and ETA on the progress line.
@@ -198,6 +198,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
                                      << exit(FatalIOError);
       }
       structure_->setMinSubcycles(int(o.integer("subcycles")));
+      // The fluid's load arrives as nodal forces (structureLoads: the conservative transfer Hᵀ f).
+      structure_->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
       // Projection structure -> each fluid patch, on the reference geometry.
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));

@@ -1,9 +1,13 @@
 #include "coupling/StructureParticipant.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "coupling/interface/SceneInterface.hpp"
+#include "coupling/scheme/TimeInterpolation.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
@@ -17,49 +21,152 @@ StructureParticipant::StructureParticipant(const std::filesystem::path& sceneFil
                                            const std::vector<std::string>& overrides)
     : StructureParticipant(structure::loadScene(sceneFile, overrides)) {}
 
-StructureParticipant::StructureParticipant(Scene scene) : scene_(std::move(scene)) {
-  if (!scene_.interfacePressure)
-    throw InputError(scene_.file.string() +
+// One structural substep of the window as SubcycledStructure asks for it: the CentralDifference steps up to
+// the substep's end (normally one step; more if the stable step fell since the window's start), each under
+// the window's load at the instant where it evaluates the forces, written into the participant's load.
+class StructureParticipant::Substeps final : public StructureStepper {
+ public:
+  Substeps(const Scene& scene, structure::CentralDifference& cd, structure::InterfaceLoad& load)
+      : scene_(scene), cd_(cd), load_(load) {}
+
+  double stableTimeStep() const override {
+    // The step the integrator itself would take (its safety factor included, SubcyclingOptions::safety = 1).
+    const structure::CentralDifferenceSettings& s = scene_.time.integrator;
+    if (s.fixedDt > 0) return s.fixedDt;
+    const double stable = s.safety * cd_.stableDt();
+    return std::isfinite(stable) ? std::min(stable, s.maxDt) : s.maxDt;
+  }
+
+  void step(double t, double h, const Eigen::VectorXd& f0, const Eigen::VectorXd& f1) override {
+    Eigen::Map<Eigen::VectorXd> load(load_.values.data(), Eigen::Index(load_.values.size()));
+    const double tEnd = t + h;
+    while (cd_.time() < tEnd * (1 - 1e-14) - 1e-300) {
+      if (cd_.time() <= t)
+        load = f0;
+      else
+        load = f0 + std::min(1.0, (cd_.time() - t) / h) * (f1 - f0);
+      // The strain energy (for the energy table, one row per window) is evaluated on the window's last step
+      // only: the substeps are equal, so the last one is within 1.5 steps of the window's end.
+      const bool monitor = cd_.lastDt() == 0 || windowEnd - cd_.time() <= 1.5 * cd_.lastDt();
+      lastStepMonitored = monitor;
+      if (!cd_.step(tEnd, monitor))
+        throw StructureUnstable(structure::diagnoseInstability(scene_, cd_, checkpoint_.step,
+                                                               checkpoint_.time,
+                                                               /*nonFinite=*/true));
+    }
+  }
+
+  /// Before a window of length dt: a stable step that collapsed (a crushed element, a blow-up on its way) is
+  /// the structure's instability, reported as such rather than as billions of substeps.
+  void checkStableStep(double dt) const {
+    const double stable = stableTimeStep();
+    if (stable > 0 && dt / stable <= 1e9) return;
+    throw StructureUnstable(
+        fmt::format("the stable step fell to {:g} s for a window of {:g} s; ", stable, dt) +
+        structure::diagnoseInstability(scene_, cd_, checkpoint_.step, checkpoint_.time,
+                                       /*nonFinite=*/!std::isfinite(stable)));
+  }
+
+  Eigen::VectorXd interfaceDisplacement() const override {
+    const structure::Nodes& N = scene_.model->nodes;
+    const std::vector<int>& nodes = scene_.couplingInterface->nodes;
+    Eigen::VectorXd u(3 * Eigen::Index(nodes.size()));
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (int k = 0; k < 3; ++k) u[Eigen::Index(3 * i) + k] = N.x[3 * nodes[i] + k] - N.X[3 * nodes[i] + k];
+    return u;
+  }
+  void saveCheckpoint() override { cd_.checkpoint(checkpoint_); }
+  void restoreCheckpoint() override { cd_.restore(checkpoint_); }
+
+  double windowEnd = 0;            ///< end of the window being solved
+  bool lastStepMonitored = false;  ///< the last structural step evaluated the strain energy
+
+ private:
+  const Scene& scene_;
+  structure::CentralDifference& cd_;
+  structure::InterfaceLoad& load_;
+  structure::StateSnapshot checkpoint_;  ///< start of the window: the last stable state
+};
+
+StructureParticipant::StructureParticipant(Scene scene) : scene_(std::make_unique<Scene>(std::move(scene))) {
+  if (!scene_->couplingInterface)
+    throw InputError(scene_->file.string() +
                      ": a coupled structure needs `coupling: {interface: <triangles>}`");
-  if (scene_.solver.type != structure::SolverControl::Type::ExplicitDynamics)
-    throw InputError(scene_.file.string() +
+  if (scene_->solver.type != structure::SolverControl::Type::ExplicitDynamics)
+    throw InputError(scene_->file.string() +
                      ": a coupled structure runs explicit dynamics (no `solver` section)");
-  cd_ = std::make_unique<structure::CentralDifference>(*scene_.model, scene_.effectList(), scene_.constraints,
-                                                       scene_.time.integrator);
-  mesh_ =
-      sceneInterface(scene_);  // reference coordinates, points in the order of the pressure effect's nodes
-  const auto& nodes = scene_.interfacePressure->nodes();
-  loadStart_.assign(nodes.size(), 0.0);
-  loadEnd_.assign(nodes.size(), 0.0);
+  const Scene::CouplingInterface& ci = *scene_->couplingInterface;
+  load_ = std::make_unique<structure::InterfaceLoad>();
+  load_->values.assign(ci.nodes.size(), 0.0);
+  interface_ = std::make_unique<structure::InterfacePressure>(ci.triangles, ci.nodes, *load_);
+  std::vector<const structure::Effect*> effects = scene_->effectList();
+  effects.push_back(interface_.get());
+  scene_->enabledEffects.push_back(interface_->name());
+  cd_ = std::make_unique<structure::CentralDifference>(*scene_->model, std::move(effects),
+                                                       scene_->constraints, scene_->time.integrator);
+  mesh_ = sceneInterface(*scene_);  // reference coordinates, points in the order of the interface nodes
+  loadStart_ = loadEnd_ = Eigen::VectorXd::Zero(Eigen::Index(ci.nodes.size()));
+  stepper_ = std::make_unique<Substeps>(*scene_, *cd_, *load_);
+  makeSubcycling();
   cd_->evaluateForces(false);
   saveCheckpoint();
 }
 
+StructureParticipant::~StructureParticipant() = default;
+StructureParticipant::StructureParticipant(StructureParticipant&&) noexcept = default;
+StructureParticipant& StructureParticipant::operator=(StructureParticipant&&) noexcept = default;
+
+void StructureParticipant::makeSubcycling() {
+  SubcyclingOptions o;
+  o.interpolation = scene_->couplingInterface->loadInWindow;
+  o.safety = 1.0;  // Substeps::stableTimeStep() is the integrator's step, safety included
+  o.minSubsteps = minSubcycles_;
+  subcycled_ = std::make_unique<SubcycledStructure>(*stepper_, o);
+}
+
 int StructureParticipant::subcyclesFor(double dt) const {
-  const double stable = scene_.time.integrator.fixedDt > 0 ? scene_.time.integrator.fixedDt
-                                                           : scene_.time.integrator.safety * cd_->stableDt();
-  return std::max({1, minSubcycles_, int(std::ceil(dt / stable - 1e-9))});
+  return subcycled_->substepsFor(dt);
+}
+
+void StructureParticipant::setWindowLoads(structure::InterfaceLoadKind kind, const double* start,
+                                          const double* end, std::size_t size) {
+  const std::size_t n = std::size_t(numInterfaceNodes()), expected = structure::valuesPerInterface(kind, n);
+  if (size != expected)
+    throw std::invalid_argument(
+        "StructureParticipant: " + std::to_string(size) + " load values for " + structure::toString(kind) +
+        " on " + std::to_string(n) + " interface nodes; expected " + std::to_string(expected) +
+        (kind == structure::InterfaceLoadKind::Pressure ? " (nodal forces need setLoadKind(NodalForces))"
+                                                        : ""));
+  kind_ = kind;
+  loadStart_ = Eigen::Map<const Eigen::VectorXd>(start, Eigen::Index(size));
+  loadEnd_ = Eigen::Map<const Eigen::VectorXd>(end, Eigen::Index(size));
+}
+
+void StructureParticipant::setLoadKind(structure::InterfaceLoadKind kind) {
+  if (kind == kind_) return;
+  kind_ = kind;  // the window's loads of the other kind mean nothing now
+  const auto size = Eigen::Index(structure::valuesPerInterface(kind, std::size_t(numInterfaceNodes())));
+  loadStart_ = loadEnd_ = Eigen::VectorXd::Zero(size);
 }
 
 void StructureParticipant::setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd) {
-  // Effective now (interfaceForce reflects it); advance() re-times the window.
-  scene_.interfacePressure->setWindow(time(), time(), pStart, pEnd, scene_.interfaceLoadRule);
-  loadStart_ = pStart;
-  loadEnd_ = pEnd;
-  forces_ = false;
+  if (pStart.size() != pEnd.size())
+    throw std::invalid_argument(
+        "StructureParticipant: pressures at the window's start and end differ in size");
+  setWindowLoads(structure::InterfaceLoadKind::Pressure, pStart.data(), pEnd.data(), pStart.size());
 }
 
 void StructureParticipant::setForces(const std::vector<double>& fStart, const std::vector<double>& fEnd) {
-  scene_.interfacePressure->setForceWindow(time(), time(), fStart, fEnd, scene_.interfaceLoadRule);
-  loadStart_ = fStart;
-  loadEnd_ = fEnd;
-  forces_ = true;
+  if (fStart.size() != fEnd.size())
+    throw std::invalid_argument("StructureParticipant: forces at the window's start and end differ in size");
+  setWindowLoads(structure::InterfaceLoadKind::NodalForces, fStart.data(), fEnd.data(), fStart.size());
 }
 
 void StructureParticipant::setMinSubcycles(int n) {
   if (n < 1)
     throw std::invalid_argument("StructureParticipant: subcycles = " + std::to_string(n) + ", valid: >= 1");
   minSubcycles_ = n;
+  makeSubcycling();
 }
 
 void StructureParticipant::advance(double dt) {
@@ -67,37 +174,26 @@ void StructureParticipant::advance(double dt) {
 }
 
 void StructureParticipant::advanceTo(double t1) {
-  const double t0 = cd_->time(), dt = t1 - t0;
-  if (forces_)
-    scene_.interfacePressure->setForceWindow(t0, t1, loadStart_, loadEnd_, scene_.interfaceLoadRule);
-  else
-    scene_.interfacePressure->setWindow(t0, t1, loadStart_, loadEnd_, scene_.interfaceLoadRule);
-  const double scenarioMaxDt = scene_.time.integrator.maxDt;
-  cd_->setMaxDt(minSubcycles_ > 1 ? std::min(scenarioMaxDt, dt / minSubcycles_ * (1 + 1e-12))
-                                  : scenarioMaxDt);
-  while (cd_->time() < t1 * (1 - 1e-14) - 1e-300) {
-    // The strain energy (for the energy table, one row per window) is evaluated on the window's last step
-    // only: the integrator lands on t1 in equal steps, so the last one is within 1.5 steps of the end.
-    const bool monitor = cd_->lastDt() == 0 || t1 - cd_->time() <= 1.5 * cd_->lastDt();
-    lastStepMonitored_ = monitor;
-    if (!cd_->step(t1, monitor))
-      throw StructureUnstable(structure::diagnoseInstability(scene_, *cd_, checkpoint_.step, checkpoint_.time,
-                                                             /*nonFinite=*/true));
-  }
+  const double t0 = cd_->time();
+  stepper_->windowEnd = t1;
+  // The effect reads values of the window's kind; resized only when the kind changes.
+  load_->kind = kind_;
+  load_->values.resize(std::size_t(loadStart_.size()));
+  // The stable step of the window's start state decides the substep count, the same for every coupling
+  // iteration of the window (it starts from the same checkpoint). The next step evaluates its forces anew.
+  cd_->evaluateForces(false);
+  stepper_->checkStableStep(t1 - t0);
+  subcycled_->solve(t0, t1 - t0, loadStart_, loadEnd_);
 }
 
 std::vector<double> StructureParticipant::interfaceDisplacement() const {
-  const structure::Nodes& N = scene_.model->nodes;
-  const auto& nodes = scene_.interfacePressure->nodes();
-  std::vector<double> u(3 * nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    for (int k = 0; k < 3; ++k) u[3 * i + k] = N.x[3 * nodes[i] + k] - N.X[3 * nodes[i] + k];
-  return u;
+  const Eigen::VectorXd u = stepper_->interfaceDisplacement();
+  return std::vector<double>(u.data(), u.data() + u.size());
 }
 
 std::vector<double> StructureParticipant::interfaceVelocity() const {
-  const structure::Nodes& N = scene_.model->nodes;
-  const auto& nodes = scene_.interfacePressure->nodes();
+  const structure::Nodes& N = scene_->model->nodes;
+  const auto& nodes = interface_->nodes();
   std::vector<double> v(3 * nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i)
     for (int k = 0; k < 3; ++k) v[3 * i + k] = N.v[3 * nodes[i] + k];
@@ -105,14 +201,19 @@ std::vector<double> StructureParticipant::interfaceVelocity() const {
 }
 
 std::array<double, 3> StructureParticipant::interfaceForce() const {
-  std::vector<double> fe(3 * scene_.model->nodes.count, 0.0), fi(fe);
+  structure::InterfaceLoad atEnd;
+  atEnd.kind = kind_;
+  const Eigen::VectorXd end =
+      TimeInterpolation(subcycled_->options().interpolation, loadStart_, loadEnd_).at(1.0);
+  atEnd.values.assign(end.data(), end.data() + end.size());
+  std::vector<double> fe(3 * scene_->model->nodes.count, 0.0), fi(fe);
   structure::ForceContext ctx;
   ctx.time = cd_->time();
-  ctx.x = scene_.model->nodes.x.data();
-  ctx.v = scene_.model->nodes.v.data();
+  ctx.x = scene_->model->nodes.x.data();
+  ctx.v = scene_->model->nodes.v.data();
   ctx.fext = fe.data();
   ctx.fint = fi.data();
-  scene_.interfacePressure->addForces(ctx);
+  interface_->addForces(ctx, atEnd);
   std::array<double, 3> F{0, 0, 0};
   for (std::size_t d = 0; d < fe.size(); ++d) F[d % 3] += fe[d];
   return F;
@@ -123,22 +224,19 @@ Eigen::VectorXd StructureParticipant::solve(double t, double dt, const Eigen::Ve
   if (std::abs(t - time()) > 1e-9 * std::max(dt, 1e-300))
     throw std::logic_error("StructureParticipant::solve: window starts at " + std::to_string(t) +
                            " s but the structure is at " + std::to_string(time()) + " s");
-  const std::vector<double> a(loadsStart.data(), loadsStart.data() + loadsStart.size());
-  const std::vector<double> b(loadsEnd.data(), loadsEnd.data() + loadsEnd.size());
-  if (a.size() == 3 * std::size_t(numInterfaceNodes()) && numInterfaceNodes() > 0)
-    setForces(a, b);
-  else
-    setPressure(a, b);
+  if (loadsStart.size() != loadsEnd.size())
+    throw std::invalid_argument(
+        "StructureParticipant::solve: loads at the window's start and end differ in size");
+  setWindowLoads(kind_, loadsStart.data(), loadsEnd.data(), std::size_t(loadsStart.size()));
   advanceTo(t + dt);  // the window's end from the scheme's clock, not the structure's running sum
-  const std::vector<double> u = interfaceDisplacement();
-  return Eigen::Map<const Eigen::VectorXd>(u.data(), Eigen::Index(u.size()));
+  return stepper_->interfaceDisplacement();
 }
 
 void StructureParticipant::saveCheckpoint() {
-  checkpoint_ = cd_->checkpoint();
+  stepper_->saveCheckpoint();
 }
 void StructureParticipant::restoreCheckpoint() {
-  cd_->restore(checkpoint_);
+  stepper_->restoreCheckpoint();
 }
 
 namespace {
@@ -157,18 +255,18 @@ void StructureParticipant::writeState(const std::filesystem::path& file,
   s.time = cd_->time();
   s.step = cd_->steps();
   s.dt = cd_->lastDt();
-  s.x = scene_.model->nodes.x;
-  s.v = scene_.model->nodes.v;
+  s.x = scene_->model->nodes.x;
+  s.v = scene_->model->nodes.v;
   structure::writeState(file, s);
 }
 
 std::map<std::string, std::vector<double>> StructureParticipant::readState(
     const std::filesystem::path& file) {
   const structure::StateSnapshot s = structure::readState(file);
-  const std::size_t n = scene_.model->nodes.x.size();
+  const std::size_t n = scene_->model->nodes.x.size();
   if (s.x.size() != n || s.v.size() != n)
     throw InputError(file.string() + ": restart state has " + std::to_string(s.x.size() / 3) +
-                     " nodes but the scene " + scene_.file.string() + " has " + std::to_string(n / 3));
+                     " nodes but the scene " + scene_->file.string() + " has " + std::to_string(n / 3));
   cd_->restore(s.x, s.v, s.time, s.dt, s.step);
   std::map<std::string, std::vector<double>> arrays = s.arrays;
   const auto ledger = arrays.find(kLedgerKey);
@@ -193,9 +291,9 @@ std::map<std::string, std::vector<double>> StructureParticipant::readState(
 }
 
 void StructureParticipant::openResults(const std::filesystem::path& h5File, std::optional<double> keepUntil) {
-  frames_ = std::make_unique<structure::SceneFrames>(scene_, h5File, keepUntil);
+  frames_ = std::make_unique<structure::SceneFrames>(*scene_, h5File, keepUntil);
   probeNames_.assign(1, "time");
-  for (const auto& p : scene_.probes) probeNames_.push_back(p.name);
+  for (const auto& p : scene_->probes) probeNames_.push_back(p.name);
   energyRows_.assign(kEnergyColumns.size(), {});
   probeRows_.assign(probeNames_.size(), {});
   if (!keepUntil) return;
@@ -241,12 +339,13 @@ void StructureParticipant::noteRestart(double time) {
 
 std::map<std::string, double> StructureParticipant::recordHistory(double time) {
   if (!frames_) throw std::logic_error("StructureParticipant::recordHistory before openResults");
-  if (!lastStepMonitored_) cd_->evaluateForces(true);  // rare: the window's last step had no strain energy
+  if (!stepper_->lastStepMonitored)
+    cd_->evaluateForces(true);  // rare: the window's last step had no strain energy
   const structure::EnergyLedger& E = cd_->energy();
   const double row[] = {time,           E.kinetic,     E.strain,         E.externalWork,
                         E.internalWork, E.massDamping, E.balanceError(), cd_->lastDt()};
   for (std::size_t i = 0; i < energyRows_.size(); ++i) energyRows_[i].push_back(row[i]);
-  std::map<std::string, double> probes = structure::evaluateProbes(scene_);
+  std::map<std::string, double> probes = structure::evaluateProbes(*scene_);
   probeRows_[0].push_back(time);
   for (std::size_t i = 1; i < probeNames_.size(); ++i) probeRows_[i].push_back(probes.at(probeNames_[i]));
   return probes;

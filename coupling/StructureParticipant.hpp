@@ -1,19 +1,29 @@
 #pragma once
 // StructureParticipant: the structural solver as one side of a partitioned coupling. It owns a Scene (which
-// declares its interface with `coupling: {interface: ...}`), advances it over a fluid step by as many stable
-// explicit steps as needed (subcycling), takes the flow's pressure at the interface nodes and returns their
-// displacements and velocities. Checkpoints let an implicit coupling repeat a step exactly.
+// declares its interface with `coupling: {interface: ...}`), takes the flow's load at the interface nodes,
+// advances the structure over a fluid step and returns the interface displacements and velocities.
+// Checkpoints let an implicit coupling repeat a step exactly.
 //
-// The flow's load arrives as a pressure per interface node (follower load on the current geometry) or as
-// nodal forces, 3 per interface node (the conservative transfer of the fluid's face forces; what the
-// OpenFOAM adapter uses).
+// Subcycling is the coupling library's (coupling/scheme/Subcycling): the participant is a StructureStepper
+// over the structure's CentralDifference, and SubcycledStructure takes N = max(subcycles, ceil(Δt /
+// Δt_stable)) equal substeps per window, Δt_stable from the window's start state, with the window's load
+// filled in by TimeInterpolation (the scene's `load_in_window`). Before every structural step the participant
+// writes the load of that instant into the InterfaceLoad it owns; the InterfacePressure effect it adds to the
+// integrator only reads it.
+//
+// The load is a pressure per interface node (follower load on the current geometry) or nodal forces, 3 per
+// interface node (the conservative transfer of the fluid's face forces; what the OpenFOAM adapter uses).
+// Which of the two solve() receives is stated once (setLoadKind), never guessed from the vector's length.
 //
 // Call sequence per fluid step [t, t + Δt]:
 //   setPressure(p(t), p(t+Δt)) or setForces(f(t), f(t+Δt));  advance(Δt);  interfaceDisplacement();
-//   (+ restoreCheckpoint() to iterate)
+//   (+ restoreCheckpoint() to iterate), or, as a StructureSolver of a CouplingScheme: setLoadKind() once,
+//   then solve(t, Δt, loads(t), loads(t+Δt)) per pass.
 
+#include <Eigen/Dense>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -21,6 +31,8 @@
 
 #include "coupling/interface/InterfaceMesh.hpp"
 #include "coupling/scheme/Solvers.hpp"
+#include "coupling/scheme/Subcycling.hpp"
+#include "structure/effects/InterfacePressure.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/io/SceneFrames.hpp"
 #include "structure/scene/Scene.hpp"
@@ -39,6 +51,9 @@ class StructureParticipant final : public StructureSolver {
   explicit StructureParticipant(structure::Scene scene);
   StructureParticipant(const std::filesystem::path& sceneFile,
                        const std::vector<std::string>& overrides = {});
+  ~StructureParticipant() override;
+  StructureParticipant(StructureParticipant&&) noexcept;
+  StructureParticipant& operator=(StructureParticipant&&) noexcept;
 
   /// Interface in the reference configuration: its points are the interface nodes, in the order of every
   /// per-node array below; its faces are the interface triangles.
@@ -46,10 +61,14 @@ class StructureParticipant final : public StructureSolver {
   int numInterfaceNodes() const { return int(mesh_.points.size()); }
 
   double time() const { return cd_->time(); }
-  /// Structural steps a fluid step of length dt will take (from the current stable step).
+  /// Structural steps a fluid step of length dt takes: subcycleCount() of the stable step at the last force
+  /// evaluation (advance() evaluates it at the window's start state), at least setMinSubcycles().
   int subcyclesFor(double dt) const;
   long structuralSteps() const { return cd_->steps(); }
 
+  /// What the loads of solve() are (default: Pressure). setPressure/setForces set it too.
+  void setLoadKind(structure::InterfaceLoadKind kind);
+  structure::InterfaceLoadKind loadKind() const { return kind_; }
   /// Pressure at the interface nodes at the start and the end of the next fluid step [Pa].
   void setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd);
   /// Nodal forces (3 per interface node, xyz) at the start and the end of the next fluid step [N].
@@ -67,11 +86,13 @@ class StructureParticipant final : public StructureSolver {
 
   std::vector<double> interfaceDisplacement() const;  ///< 3 per interface node [m]
   std::vector<double> interfaceVelocity() const;      ///< 3 per interface node [m/s], at the last half step
-  /// Sum of the interface pressure forces at the current state (for conservation checks) [N].
+  /// Sum of the interface forces at the current state (for conservation checks) [N], under the window's load
+  /// at its end as the window rule sees it (the mean of both ends for `mean`, the end value otherwise).
   std::array<double, 3> interfaceForce() const;
 
-  /// StructureSolver: loads = interface pressure per node (numInterfaceNodes() values) or nodal forces
-  /// (3 per node) at both ends of [t, t+dt]; returns the interface displacement (3 per node) at t+dt.
+  /// StructureSolver: loads of loadKind() at both ends of [t, t+dt] (pressure: numInterfaceNodes() values,
+  /// nodal forces: 3 per node; any other length throws std::invalid_argument); returns the interface
+  /// displacement (3 per node) at t+dt.
   Eigen::VectorXd solve(double t, double dt, const Eigen::VectorXd& loadsStart,
                         const Eigen::VectorXd& loadsEnd) override;
   void saveCheckpoint() override;
@@ -103,18 +124,29 @@ class StructureParticipant final : public StructureSolver {
   /// Frames in the results series (including those kept from an earlier run).
   int framesWritten() const;
 
-  structure::Scene& scene() { return scene_; }
+  structure::Scene& scene() { return *scene_; }
   const structure::CentralDifference& integrator() const { return *cd_; }
 
  private:
-  structure::Scene scene_;
+  class Substeps;  // the StructureStepper over cd_ (StructureParticipant.cpp)
+  void setWindowLoads(structure::InterfaceLoadKind kind, const double* start, const double* end,
+                      std::size_t size);
+  void makeSubcycling();
+
+  // Held on the heap, like everything the stepper, the effect and the integrator refer to, so that a
+  // participant can be moved.
+  std::unique_ptr<structure::Scene> scene_;
+  // The load the interface effect reads, written before every structural step by the stepper; declared
+  // before the effect and the integrator that refer to it.
+  std::unique_ptr<structure::InterfaceLoad> load_;
+  std::unique_ptr<structure::InterfacePressure> interface_;
   std::unique_ptr<structure::CentralDifference> cd_;
+  std::unique_ptr<Substeps> stepper_;  // also holds the checkpoint
+  std::unique_ptr<SubcycledStructure> subcycled_;
   InterfaceMesh mesh_;
-  std::vector<double> loadStart_, loadEnd_;
-  bool forces_ = false;  ///< the loads are nodal forces, not pressures
+  structure::InterfaceLoadKind kind_ = structure::InterfaceLoadKind::Pressure;
+  Eigen::VectorXd loadStart_, loadEnd_;  ///< the window's loads, of kind_
   int minSubcycles_ = 1;
-  bool lastStepMonitored_ = false;  ///< the last structural step evaluated the strain energy
-  structure::StateSnapshot checkpoint_;
   std::unique_ptr<structure::SceneFrames> frames_;
   // Histories for /tables/energy and /tables/probes of the results file, column by column.
   std::vector<std::string> probeNames_;

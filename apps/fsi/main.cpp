@@ -156,14 +156,9 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
   if (quadratureLevel < 1)
     throw fsi::InputError(fmt::format("--quadrature-level {}: must be >= 1", quadratureLevel));
   fsi::coupling::MapCheckOptions opt;
-  if (variant == "consistent")
-    opt.mass = fsi::coupling::MassMatrix::Consistent;
-  else if (variant == "lumped")
-    opt.mass = fsi::coupling::MassMatrix::Lumped;
-  else if (variant == "dual")
-    opt.mass = fsi::coupling::MassMatrix::Dual;
-  else
-    throw fsi::InputError(fmt::format("--variant {}: must be consistent, lumped or dual", variant));
+  if (!fsi::coupling::massMatrixFromName(variant, opt.mass))
+    throw fsi::InputError(fmt::format("--variant {}: must be one of {}", variant,
+                                      fmt::join(fsi::coupling::massMatrixNames(), ", ")));
   std::ofstream out;
   if (!jsonOut.empty()) {  // opened first so that a bad path fails before the work
     out.open(jsonOut);

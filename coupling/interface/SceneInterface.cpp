@@ -18,11 +18,11 @@ bool endsWith(const std::string& s, const std::string& tail) {
 }  // namespace
 
 InterfaceMesh sceneInterface(const structure::Scene& scene) {
-  if (!scene.interfacePressure)
+  if (!scene.couplingInterface)
     throw InputError(scene.file.string() +
                      ": the scene declares no coupling interface; add `coupling: {interface: <triangles>}`");
   const structure::Nodes& N = scene.model->nodes;
-  const std::vector<int>& nodes = scene.interfacePressure->nodes();
+  const std::vector<int>& nodes = scene.couplingInterface->nodes;
   InterfaceMesh mesh;
   mesh.name = "structure";
   std::unordered_map<int, int> local;  // model node -> interface point
@@ -31,7 +31,7 @@ InterfaceMesh sceneInterface(const structure::Scene& scene) {
     local[nodes[i]] = int(i);
     mesh.points.push_back({N.X[3 * nodes[i]], N.X[3 * nodes[i] + 1], N.X[3 * nodes[i] + 2]});
   }
-  const std::vector<int> tris = scene.interfacePressure->triangles();
+  const std::vector<int>& tris = scene.couplingInterface->triangles;
   for (std::size_t e = 0; e + 2 < tris.size(); e += 3)
     mesh.addFace({local.at(tris[e]), local.at(tris[e + 1]), local.at(tris[e + 2])});
   return mesh;

@@ -13,7 +13,7 @@
 
 namespace fsi::coupling {
 
-/// The scene's interface triangles: point i is the i-th node of the scene's InterfacePressure effect (the
+/// The scene's interface triangles: point i is the i-th node of the scene's coupling interface (the
 /// order of every per-node array of a coupled run), at its reference position; faces are the interface
 /// triangles. Throws fsi::InputError naming the scene file when it declares no `coupling` interface.
 InterfaceMesh sceneInterface(const structure::Scene& scene);

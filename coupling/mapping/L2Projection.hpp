@@ -26,6 +26,22 @@ enum class MassMatrix { Consistent, Lumped, Dual };
 inline const char* toString(MassMatrix m) {
   return m == MassMatrix::Consistent ? "consistent" : (m == MassMatrix::Lumped ? "lumped" : "dual");
 }
+/// The names users write for the projection's mass matrix (`projection` in the adapter's options,
+/// `fsi map-check --variant`), in the order of the enum: the one list every reader of such a name uses.
+inline const std::vector<std::string>& massMatrixNames() {
+  static const std::vector<std::string> names{toString(MassMatrix::Consistent), toString(MassMatrix::Lumped),
+                                              toString(MassMatrix::Dual)};
+  return names;
+}
+/// The mass matrix a name stands for; false (and `out` untouched) for any other name.
+inline bool massMatrixFromName(const std::string& name, MassMatrix& out) {
+  for (MassMatrix m : {MassMatrix::Consistent, MassMatrix::Lumped, MassMatrix::Dual})
+    if (name == toString(m)) {
+      out = m;
+      return true;
+    }
+  return false;
+}
 
 struct ProjectionOptions {
   MassMatrix mass = MassMatrix::Consistent;

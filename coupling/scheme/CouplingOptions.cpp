@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "coupling/mapping/L2Projection.hpp"
+#include "coupling/scheme/acceleration/AccelerationRegistry.hpp"
 #include "structure/scene/NearestName.hpp"
 
 namespace fsi::coupling {
@@ -344,10 +346,8 @@ OptionValues OptionSchema::validate(const OptionTokens& tokens) const {
 //   maxIterations >= 1, reuse >= 0, extrapolation 0..2 (the predictors CouplingScheme has), subcycles >= 1.
 //   rho, mapTolerance > 0: a density and a distance.
 
-namespace {
-
-OptionSpec realSpec(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
-                    std::string description) {
+OptionSpec realOption(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
+                      std::string description) {
   OptionSpec s;
   s.key = std::move(key);
   s.type = OptionType::Real;
@@ -358,12 +358,18 @@ OptionSpec realSpec(std::string key, std::string def, std::optional<Bound> lo, s
   return s;
 }
 
-OptionSpec integerSpec(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
-                       std::string description) {
-  OptionSpec s = realSpec(std::move(key), std::move(def), lo, hi, std::move(description));
+OptionSpec integerOption(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
+                         std::string description) {
+  OptionSpec s = realOption(std::move(key), std::move(def), lo, hi, std::move(description));
   s.type = OptionType::Integer;
   return s;
 }
+
+OptionSpec omegaOption(const std::string& def, const std::string& description) {
+  return realOption("omega", def, Bound{0, false}, Bound{1, true}, description);
+}
+
+namespace {
 
 OptionSpec wordSpec(std::string key, OptionType type, std::string def, std::vector<std::string> choices,
                     std::string description) {
@@ -379,42 +385,7 @@ OptionSpec wordSpec(std::string key, OptionType type, std::string def, std::vect
 const OptionCondition kWithScene{"scene", {}};
 const OptionCondition kImplicit{"scheme", {"implicit"}};
 
-OptionSpec omegaSpec(const std::string& def, const std::string& description) {
-  return realSpec("omega", def, Bound{0, false}, Bound{1, true}, description);
-}
-
 }  // namespace
-
-const std::vector<AccelerationEntry>& accelerationEntries() {
-  static const std::vector<AccelerationEntry> entries{
-      {"constant",
-       "fixed relaxation d + omega r",
-       {omegaSpec("0.5", "the relaxation factor")},
-       [](const OptionValues& v) -> std::unique_ptr<Acceleration> {
-         return std::make_unique<ConstantRelaxation>(v.real("omega"));
-       }},
-      {"aitken",
-       "Aitken's dynamic relaxation",
-       {omegaSpec("0.5", "relaxation factor of the first iteration; later ones are Aitken's")},
-       [](const OptionValues& v) -> std::unique_ptr<Acceleration> {
-         AitkenOptions o;
-         o.initialOmega = v.real("omega");
-         return std::make_unique<Aitken>(o);
-       }},
-      {"IQN-ILS",
-       "interface quasi-Newton, inverse Jacobian by least squares",
-       {omegaSpec("0.1", "relaxation factor of a window's first iteration"),
-        integerSpec("reuse", "0", Bound{0, true}, std::nullopt,
-                    "also use the columns of this many past windows (8 suits a canopy)")},
-       [](const OptionValues& v) -> std::unique_ptr<Acceleration> {
-         IqnIlsOptions o;
-         o.initialOmega = v.real("omega");
-         o.reuseSteps = int(v.integer("reuse"));
-         return std::make_unique<IqnIls>(o);
-       }},
-  };
-  return entries;
-}
 
 OptionSchema couplingOptionSchema() {
   OptionSchema s;
@@ -422,12 +393,12 @@ OptionSchema couplingOptionSchema() {
                                 "interface patches; several map onto one structure (baffle pair)");
   patches.required = true;
   s.add(patches);
-  OptionSpec rho = realSpec("rho", "", Bound{0, false}, std::nullopt,
-                            "fluid density [kg/m3] (the incompressible solvers' p is kinematic)");
+  OptionSpec rho = realOption("rho", "", Bound{0, false}, std::nullopt,
+                              "fluid density [kg/m3] (the incompressible solvers' p is kinematic)");
   rho.required = true;
   s.add(rho);
-  s.add(realSpec("pRef", "0", std::nullopt, std::nullopt,
-                 "reference pressure [Pa] subtracted from the fluid's"));
+  s.add(realOption("pRef", "0", std::nullopt, std::nullopt,
+                   "reference pressure [Pa] subtracted from the fluid's"));
   s.add(wordSpec("viscous", OptionType::Switch, "no", {}, "add the viscous traction of the solver's model"));
   s.add(
       wordSpec("scene", OptionType::Text, "", {},
@@ -447,32 +418,32 @@ OptionSchema couplingOptionSchema() {
       o.when.insert(o.when.begin(), {kImplicit, {"acceleration", {a.name}}});
       coupled.push_back(o);
     }
-  OptionSpec tolerance = realSpec("tolerance", "1e-5", Bound{0, false}, Bound{1, false},
-                                  "relative interface-displacement residual that ends a window");
+  OptionSpec tolerance = realOption("tolerance", "1e-5", Bound{0, false}, Bound{1, false},
+                                    "relative interface-displacement residual that ends a window");
   tolerance.when = {kImplicit};
   coupled.push_back(tolerance);
   OptionSpec maxIterations =
-      integerSpec("maxIterations", "30", Bound{1, true}, std::nullopt, "iterations per window at most");
+      integerOption("maxIterations", "30", Bound{1, true}, std::nullopt, "iterations per window at most");
   maxIterations.when = {kImplicit};
   coupled.push_back(maxIterations);
-  coupled.push_back(integerSpec("extrapolation", "1", Bound{0, true}, Bound{2, true},
-                                "predictor order of a window's first displacement (staggered: stability)"));
-  coupled.push_back(wordSpec("projection", OptionType::Choice, "consistent", {"consistent", "lumped", "dual"},
-                             "L2 projection between the non-matching interface meshes"));
-  OptionSpec mapTolerance = realSpec("mapTolerance", "", Bound{0, false}, std::nullopt,
-                                     "[m] fluid points farther than this from the structure stop the run");
+  coupled.push_back(integerOption("extrapolation", "1", Bound{0, true}, Bound{2, true},
+                                  "predictor order of a window's first displacement (staggered: stability)"));
+  coupled.push_back(wordSpec("projection", OptionType::Choice, toString(MassMatrix::Consistent),
+                             massMatrixNames(), "L2 projection between the non-matching interface meshes"));
+  OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
+                                       "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";
   coupled.push_back(mapTolerance);
-  coupled.push_back(integerSpec("subcycles", "1", Bound{1, true}, std::nullopt,
-                                "at least this many structural steps per fluid step"));
+  coupled.push_back(integerOption("subcycles", "1", Bound{1, true}, std::nullopt,
+                                  "at least this many structural steps per fluid step"));
   OptionSpec restore = wordSpec("restoreMeshPoints", OptionType::Switch, "yes", {},
                                 "a repeated step starts from the first pass's mesh points (exact repeat)");
   restore.when = {kImplicit};
   coupled.push_back(restore);
   coupled.push_back(wordSpec("verifyCheckpoint", OptionType::Switch, "no", {},
                              "debug: solve every pass twice from the checkpoint, report the differences"));
-  OptionSpec progress = integerSpec("progress", "", Bound{0, true}, std::nullopt,
-                                    "a [fsi] progress line every this many windows; 0: none");
+  OptionSpec progress = integerOption("progress", "", Bound{0, true}, std::nullopt,
+                                      "a [fsi] progress line every this many windows; 0: none");
   progress.defaultNote = "ceil(windows / 40), i.e. 20 to 40 lines per run";
   coupled.push_back(progress);
   for (OptionSpec& o : coupled) {
@@ -484,8 +455,7 @@ OptionSchema couplingOptionSchema() {
 
 std::unique_ptr<Acceleration> makeAcceleration(const OptionValues& values) {
   const std::string& name = values.text("acceleration");
-  for (const AccelerationEntry& a : accelerationEntries())
-    if (a.name == name) return a.make(values);
+  if (const AccelerationEntry* a = findAcceleration(name)) return a->make(values);
   throw std::invalid_argument("makeAcceleration: unknown acceleration " + name);
 }
 

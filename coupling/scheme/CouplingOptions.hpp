@@ -4,13 +4,11 @@
 // It knows no host: the OpenFOAM adapter turns its function-object dictionary into key -> tokens
 // (OptionTokens), adds the keys OpenFOAM itself reads, and calls OptionSchema::validate(), which stops at the
 // first unknown key (naming the nearest valid key and all valid keys) or bad value (naming the key, the value
-// and the valid range). The accelerations an implicit scheme can use are a table of their own
-// (accelerationEntries(): name, description, their options, a factory), so that a registry of accelerations
-// can contribute entries without touching the scheme's options. Ranges agree with the checks of the library
-// classes (Acceleration, CouplingScheme, StructureParticipant); tests/unit/test_coupling_options.cpp checks
-// it.
+// and the valid range). The accelerations an implicit scheme can use, their names (and so the "did you mean"
+// of `acceleration`) and their own options come from their registry (acceleration/AccelerationRegistry),
+// so that adding one touches nothing here. Ranges agree with the checks of the library classes
+// (the accelerations, CouplingScheme, StructureParticipant); tests/unit/test_coupling_options.cpp checks it.
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -133,15 +131,13 @@ class OptionSchema {
   std::string hostName_ = "host";
 };
 
-/// An acceleration of the implicit scheme: its name (the value of `acceleration`), a one-line description,
-/// its own options (conditions on `acceleration` are added by couplingOptionSchema()) and a factory.
-struct AccelerationEntry {
-  std::string name;
-  std::string description;
-  std::vector<OptionSpec> options;
-  std::function<std::unique_ptr<Acceleration>(const OptionValues&)> make;
-};
-const std::vector<AccelerationEntry>& accelerationEntries();
+/// Table rows for the option tables of this file and of the accelerations' entries (AccelerationRegistry):
+/// a real or integer option with an optional range, and the relaxation factor omega, 0 < omega <= 1.
+OptionSpec realOption(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
+                      std::string description);
+OptionSpec integerOption(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
+                         std::string description);
+OptionSpec omegaOption(const std::string& def, const std::string& description);
 
 /// The coupling options of a coupled run (the OpenFOAM adapter's fsiCoupling entry without OpenFOAM's own
 /// keys). docs/COUPLING.md lists the table.

@@ -3,6 +3,8 @@
 // The loads between the window's ends come from TimeInterpolation; the coupling only sees the displacement
 // at the end of the window. N is recomputed per window (the stable step of a nonlinear membrane changes)
 // but is fixed within one window, so every coupling iteration of that window repeats the same substeps.
+// This is the path of the product: coupling/StructureParticipant is a StructureStepper over the structure's
+// CentralDifference, made a StructureSolver by SubcycledStructure.
 
 #include <Eigen/Dense>
 
@@ -19,7 +21,8 @@ int subcycleCount(double windowSize, double stableStep);
 class StructureStepper : public CheckpointedSolver {
  public:
   virtual double stableTimeStep() const = 0;
-  /// Advance [t, t+h] with interface loads `loadsStart` at t and `loadsEnd` at t+h.
+  /// Advance [t, t+h] with interface loads `loadsStart` at t and `loadsEnd` at t+h. The last substep of a
+  /// window ends exactly on the window's end t_w + dt (h is the difference, not dt / N).
   virtual void step(double t, double h, const Eigen::VectorXd& loadsStart,
                     const Eigen::VectorXd& loadsEnd) = 0;
   virtual Eigen::VectorXd interfaceDisplacement() const = 0;
@@ -28,6 +31,7 @@ class StructureStepper : public CheckpointedSolver {
 struct SubcyclingOptions {
   LoadInterpolation interpolation = LoadInterpolation::ConstantMean;
   double safety = 1.0;  ///< fraction of the stepper's stable step actually used
+  int minSubsteps = 1;  ///< at least this many substeps per window (>= 1)
 };
 
 /// Makes a StructureStepper a StructureSolver for the coupling schemes.
@@ -39,6 +43,9 @@ class SubcycledStructure final : public StructureSolver {
   void saveCheckpoint() override { stepper_.saveCheckpoint(); }
   void restoreCheckpoint() override { stepper_.restoreCheckpoint(); }
   int lastSubsteps() const { return lastSubsteps_; }
+  /// Substeps a window of length dt takes from the stepper's current stable step.
+  int substepsFor(double dt) const;
+  const SubcyclingOptions& options() const { return opt_; }
 
  private:
   StructureStepper& stepper_;

@@ -24,17 +24,12 @@ TimeInterpolation::TimeInterpolation(LoadInterpolation kind, const Eigen::Vector
 }
 
 void TimeInterpolation::at(double theta, Eigen::VectorXd& out) const {
-  switch (kind_) {
-    case LoadInterpolation::ConstantMean:
-      out = 0.5 * (start_ + end_);
-      return;
-    case LoadInterpolation::ConstantEnd:
-      out = end_;
-      return;
-    case LoadInterpolation::Linear:
-      out = (1.0 - theta) * start_ + theta * end_;
-      return;
-  }
+  // start + s (end - start) for every rule (s = 1/2, 1 or theta): the form the structure's interface effect
+  // always evaluated, so that moving the window rule here changed no coupled result by a single bit.
+  const double s = kind_ == LoadInterpolation::ConstantMean  ? 0.5
+                   : kind_ == LoadInterpolation::ConstantEnd ? 1.0
+                                                             : theta;
+  out = start_ + s * (end_ - start_);
 }
 
 }  // namespace fsi::coupling

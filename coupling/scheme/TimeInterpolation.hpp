@@ -9,11 +9,17 @@
 //                 added mass, but its quadrature of the window differs from the fluid's, and with an
 //                 added-mass ratio of order one or more the converged coupled scheme becomes unstable.
 
+//
+// The enum is the structure's (a scene's `coupling: {load_in_window: ...}` names it), so that the scene and
+// the coupling share one definition; this is its only implementation.
+
 #include <Eigen/Dense>
+
+#include "structure/effects/InterfacePressure.hpp"
 
 namespace fsi::coupling {
 
-enum class LoadInterpolation { ConstantMean, ConstantEnd, Linear };
+using structure::LoadInterpolation;
 
 const char* toString(LoadInterpolation kind);
 

@@ -1,16 +1,16 @@
 #pragma once
-// InterfacePressure: a pressure FIELD given at the nodes of a set of triangles (what a flow solver delivers
-// through the coupling), applied as a follower load: for a triangle with linear p, node a receives
-// ∫ N_a p n dA = (A n / 12)(2 p_a + p_b + p_c) on the CURRENT area and normal. Within a coupling window
-// [t0, t1] the field is interpolated linearly in time between the start and end values (or held at the end
-// value). Default: the MEAN of the start and end values held over the window — the window's trapezoidal
-// impulse, as the fluid integrates it; linear interpolation destabilises a subcycled structure under a heavy
-// added mass (docs/COUPLING.md).
+// InterfacePressure: the flow's load on a set of triangles, as the coupling delivers it at the interface
+// nodes. A PRESSURE field (one value per node) is applied as a follower load: for a triangle with linear p,
+// node a receives ∫ N_a p n dA = (A n / 12)(2 p_a + p_b + p_c) on the CURRENT area and normal. NODAL FORCES
+// (3 per interface node, the conservative transfer Hᵀ f of the fluid's face forces) are added as given:
+// computed by the fluid on its deformed mesh, they need no follower update, and their sum is the fluid's
+// interface force to round-off (the Kalro–Tezduyar conservation check).
 //
-// Alternatively the flow delivers NODAL FORCES (3 per interface node, the conservative transfer Hᵀ f of the
-// fluid's face forces): they are added as given, with the same window rule. Forces computed by the fluid
-// on its deformed mesh at both window ends need no follower update within the window, and their sum is the
-// fluid's interface force to round-off (the Kalro–Tezduyar conservation check).
+// The effect owns no load. It reads an InterfaceLoad that its owner (coupling/StructureParticipant) writes
+// before every structural step: the kind of the values is stated there, never guessed from their number,
+// and the integrator's `const Effect*` really is a read-only view. How the load varies inside a coupling
+// window (LoadInterpolation) is the coupling library's business (coupling/scheme/TimeInterpolation); the
+// enum lives here only because the scene, which the coupling builds on, reads `load_in_window`.
 
 #include <string>
 #include <vector>
@@ -19,43 +19,43 @@
 
 namespace fsi::structure {
 
-enum class WindowLoad { Mean, End, Linear };
+/// How the flow's load varies inside a coupling window [t, t + Δt] known at its two ends
+/// (`coupling: {load_in_window: mean | end | linear}`; coupling/scheme/TimeInterpolation.hpp explains each).
+enum class LoadInterpolation { ConstantMean, ConstantEnd, Linear };
+
+/// What the values of an InterfaceLoad are.
+enum class InterfaceLoadKind {
+  Pressure,    ///< one value per interface node [Pa]
+  NodalForces  ///< three values per interface node, xyz [N]
+};
+const char* toString(InterfaceLoadKind kind);
+
+/// The interface load in force now: written by its owner, read by InterfacePressure.
+struct InterfaceLoad {
+  InterfaceLoadKind kind = InterfaceLoadKind::Pressure;
+  std::vector<double> values;  ///< in the order of the interface nodes
+};
+
+/// Values an InterfaceLoad of `kind` needs on an interface of `nodes` nodes.
+inline std::size_t valuesPerInterface(InterfaceLoadKind kind, std::size_t nodes) {
+  return kind == InterfaceLoadKind::Pressure ? nodes : 3 * nodes;
+}
 
 class InterfacePressure final : public Effect {
  public:
-  /// triangleConn: model node indices, 3 per triangle; nodes: the model nodes carrying a pressure value
-  /// (their order defines the order of the pressure arrays).
-  InterfacePressure(std::vector<int> triangleConn, std::vector<int> nodes);
+  /// triangleConn: model node indices, 3 per triangle; nodes: the model nodes of the interface (their order
+  /// is the order of the load's values); load: read at every force evaluation, must outlive the effect.
+  InterfacePressure(std::vector<int> triangleConn, std::vector<int> nodes, const InterfaceLoad& load);
   std::string name() const override { return "interface_pressure"; }
-  void addForces(ForceContext& ctx) const override;
-
-  /// Pressure values (one per interface node) at the start and end of the window [t0, t1].
-  void setWindow(double t0, double t1, const std::vector<double>& pStart, const std::vector<double>& pEnd,
-                 WindowLoad rule);
-  /// Nodal forces (3 per interface node, xyz) at the start and end of [t0, t1]; replaces the pressure.
-  void setForceWindow(double t0, double t1, const std::vector<double>& fStart,
-                      const std::vector<double>& fEnd, WindowLoad rule);
-  bool carriesForces() const { return forces_; }
+  void addForces(ForceContext& ctx) const override { addForces(ctx, load_); }
+  /// The forces of any load on this interface (e.g. to sum a load that is not the current one).
+  void addForces(ForceContext& ctx, const InterfaceLoad& load) const;
   const std::vector<int>& nodes() const { return nodes_; }
-  /// Interface triangles as model node indices, 3 per triangle.
-  std::vector<int> triangles() const {
-    std::vector<int> t(conn_.size());
-    for (std::size_t i = 0; i < conn_.size(); ++i) t[i] = nodes_[conn_[i]];
-    return t;
-  }
 
  private:
-  double windowFraction(double time) const;
-  void assign(double t0, double t1, const std::vector<double>& start, const std::vector<double>& end,
-              WindowLoad rule, bool forces);
-
-  std::vector<int> conn_;        ///< triangles as local interface node indices
-  std::vector<int> nodes_;       ///< interface node -> model node
-  std::vector<double> p0_, p1_;  ///< pressures (1 per node) or forces (3 per node)
-  bool forces_ = false;
-  double t0_ = 0, t1_ = 1;
-  WindowLoad rule_ = WindowLoad::Mean;
-  mutable std::vector<double> p_;  ///< pressure at the current time (scratch, sized once)
+  std::vector<int> conn_;   ///< triangles as local interface node indices
+  std::vector<int> nodes_;  ///< interface node -> model node
+  const InterfaceLoad& load_;
 };
 
 }  // namespace fsi::structure

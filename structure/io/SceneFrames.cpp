@@ -1,6 +1,6 @@
 #include "structure/io/SceneFrames.hpp"
 
-#include "structure/effects/CableForces.hpp"
+#include "structure/elements/ElementKind.hpp"
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure {
@@ -35,26 +35,11 @@ void SceneFrames::write(double time, long step) {
     for (int i = 0; i < 3 * N.count; ++i) r_[i] = N.invMassDof[i] != 0.0 ? N.fext[i] - N.fint[i] : 0.0;
     views.push_back({"residual", FieldView::Center::Node, 3, r_.data()});
   }
-  if (scene_.membrane && (f.count("stress") || f.count("principal_stress") || f.count("wrinkle_state"))) {
-    scene_.membrane->evaluate(N.x.data(), stress_);
-    major_.resize(m.membranes.count);
-    minor_.resize(m.membranes.count);
-    for (int e = 0; e < m.membranes.count; ++e) {
-      major_[e] = stress_.principal[2 * e];
-      minor_[e] = stress_.principal[2 * e + 1];
-    }
-    if (f.count("stress")) views.push_back({"stress", FieldView::Center::Triangle, 6, stress_.cauchy.data()});
-    if (f.count("principal_stress")) {
-      views.push_back({"principal_stress_major", FieldView::Center::Triangle, 1, major_.data()});
-      views.push_back({"principal_stress_minor", FieldView::Center::Triangle, 1, minor_.data()});
-    }
-    if (f.count("wrinkle_state"))
-      views.push_back({"wrinkle_state", FieldView::Center::Triangle, 1, stress_.state.data()});
-  }
-  if (scene_.cable && f.count("cable_force")) {
-    scene_.cable->evaluate(N.x.data(), tension_);
-    views.push_back({"cable_force", FieldView::Center::Line, 1, tension_.data()});
-  }
+  // Element fields: every element kind adds the ones it has (stress of the membranes, cable forces, ...).
+  const auto& kinds = elementKinds();
+  elementFields_.resize(kinds.size());
+  for (std::size_t k = 0; k < kinds.size(); ++k)
+    kinds[k]->addFields(m, N.x.data(), f, elementFields_[k], views);
   writer_->writeStep(time, step, N.x.data(), views);
 }
 

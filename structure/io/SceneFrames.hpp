@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/elements/ElementKind.hpp"
 #include "structure/io/ResultsWriter.hpp"
 #include "structure/scene/Scene.hpp"
 
@@ -29,8 +29,8 @@ class SceneFrames {
  private:
   const Scene& scene_;
   std::unique_ptr<ResultsWriter> writer_;
-  std::vector<double> u_, r_, major_, minor_, tension_;
-  MembraneStressField stress_;
+  std::vector<double> u_, r_;
+  std::vector<ElementFieldBuffers> elementFields_;  ///< one per element kind, kept between frames
 };
 
 }  // namespace fsi::structure

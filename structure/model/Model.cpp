@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numeric>
 
+#include "structure/elements/ElementKind.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::structure {
@@ -212,7 +213,6 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     const double l32 = std::sqrt((a0 - b0) * (a0 - b0) + c0 * c0);
     const double h0 = a0 * c0 / std::max({a0, l31, l32});
     T.refStep2[e] = h0 * T.invWaveSpeed[e] * h0 * T.invWaveSpeed[e];
-    for (int k = 0; k < 3; ++k) N.mass[n[k]] += mat.density * mat.thickness * area / 3.0;
     if (T.blocks.empty() || T.blocks.back().material != r.material) {
       MembraneBlock b;
       b.begin = e;
@@ -253,8 +253,6 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     const CableMaterial& mat = model.cableMaterials[r.material];
     C.restLength[e] = L;
     C.invWaveSpeed[e] = std::sqrt(mat.density / mat.young);
-    N.mass[a] += 0.5 * mat.density * mat.area * L;
-    N.mass[b] += 0.5 * mat.density * mat.area * L;
     if (C.blocks.empty() || C.blocks.back().material != r.material) {
       CableBlock blk;
       blk.begin = e;
@@ -268,6 +266,8 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     C.blocks.back().end = e + 1;
   }
 
+  // 4. Lumped masses, each element kind adding its own.
+  for (const ElementKind* kind : elementKinds()) kind->addLumpedMass(model, N.mass);
   for (int i = 0; i < N.count; ++i)
     if (!(N.mass[i] > 0))
       throw InputError(fmt::format("{} belongs to no element and has no mass", model.describeNode(i)));

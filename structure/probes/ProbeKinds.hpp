@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/elements/MembraneForces.hpp"
 #include "structure/probes/ProbeSpec.hpp"
 #include "structure/scene/Scene.hpp"
 #include "structure/scene/SetResolver.hpp"

@@ -21,7 +21,7 @@ const std::vector<ProbeKind>& probeKinds() {
 }
 
 const MembraneStressField& ProbeState::membraneStress() {
-  if (!haveStress_ && scene_.membrane) scene_.membrane->evaluate(scene_.model->nodes.x.data(), stress_);
+  if (!haveStress_) membraneStresses(scene_.model->membranes, scene_.model->nodes.x.data(), stress_);
   haveStress_ = true;
   return stress_;
 }

@@ -4,33 +4,33 @@
 
 #include <cmath>
 
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/elements/ElementKind.hpp"
 
 namespace fsi::structure {
 
 namespace {
 
-// "Most strained element: ..." (or the first with a non-finite strain), empty without membranes.
+// "Most strained element: ..." (or the first with a non-finite strain) over the element kinds that report
+// one; empty if none does.
 std::string mostStrainedElement(const Scene& scene) {
-  if (!scene.membrane) return {};
   const Model& m = *scene.model;
-  MembraneStressField f;
-  scene.membrane->evaluate(m.nodes.x.data(), f);
-  int worst = -1;
-  double worstStrain = -1;
-  for (int e = 0; e < m.membranes.count; ++e) {
-    const double es = f.majorStrain[e];
-    if (!std::isfinite(es)) {
-      worst = e;
+  const ElementKind* worstKind = nullptr;
+  StrainedElement worst;
+  for (const ElementKind* kind : elementKinds()) {
+    if (kind->count(m) == 0) continue;
+    const std::optional<StrainedElement> s = kind->mostStrained(m, m.nodes.x.data());
+    if (!s) continue;
+    if (!std::isfinite(s->strain)) {
+      worstKind = kind, worst = *s;
       break;
     }
-    if (es > worstStrain) worstStrain = es, worst = e;
+    if (!worstKind || s->strain > worst.strain) worstKind = kind, worst = *s;
   }
-  if (worst < 0) return {};
-  return std::isfinite(f.majorStrain[worst])
-             ? fmt::format("Most strained element: {} (major strain {:.3g}). ", m.describeTriangle(worst),
-                           f.majorStrain[worst])
-             : fmt::format("First element with a non-finite strain: {}. ", m.describeTriangle(worst));
+  if (!worstKind) return {};
+  return std::isfinite(worst.strain) ? fmt::format("Most strained element: {} (major strain {:.3g}). ",
+                                                   worstKind->describe(m, worst.element), worst.strain)
+                                     : fmt::format("First element with a non-finite strain: {}. ",
+                                                   worstKind->describe(m, worst.element));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "structure/elements/ElementKind.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
 #include "structure/run/RunCommon.hpp"
 
@@ -180,7 +181,8 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   output.close();
 
   const EnergyLedger& E = cd.energy();
-  const long elements = model.membranes.count + model.cables.count;
+  long elements = 0;  // element updates per step, every kind
+  for (const ElementKind* kind : elementKinds()) elements += kind->count(model);
   nlohmann::json st;
   st["steps"] = steps;
   st["simulated_time"] = cd.time();

@@ -8,8 +8,8 @@ namespace fsi::structure {
 
 std::vector<MeshSpec> readMeshes(const YamlMap& top, const MaterialTable& materials,
                                  const std::filesystem::path& dir) {
-  const auto& membraneIdx = materials.membraneIdx;
-  const auto& cableIdx = materials.cableIdx;
+  const auto& membraneIdx = materialsOfKind(materials, "membrane");
+  const auto& cableIdx = materialsOfKind(materials, "cable");
   std::vector<MeshSpec> out;
   YamlMap meshes = top.map("meshes");
   if (meshes.keys().empty()) meshes.fail("at least one mesh is needed");
@@ -43,7 +43,7 @@ Model buildSceneModel(std::vector<MeshSpec> meshes, const MaterialTable& materia
     inputs.push_back(std::move(m.input));
   }
   try {
-    return buildModel(std::move(inputs), materials.membraneMats, materials.cableMats);
+    return buildModel(std::move(inputs), materials.membrane, materials.cable);
   } catch (const InputError& e) {
     const std::string what = e.what();
     std::string where = file;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "structure/elements/ElementKind.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/probes/ProbeKinds.hpp"
 #include "structure/scene/BuildConstraints.hpp"
@@ -47,7 +48,7 @@ SceneSpec readSceneSpec(const YamlMap& top, const std::string& fileName, const s
   spec.file = fileName;
   spec.dir = dir;
   spec.title = top.string("title", "");
-  spec.materials = readMaterials(top);
+  spec.materials = readSceneMaterials(top);
   spec.meshes = readMeshes(top, spec.materials, dir);
   spec.solver = readSolver(top);
   spec.time = readTime(top, spec.relaxation());
@@ -55,26 +56,15 @@ SceneSpec readSceneSpec(const YamlMap& top, const std::string& fileName, const s
   return spec;
 }
 
-// The membrane and cable internal forces: built for every model with triangles / cables, with the damping
-// the `effects:` section asked for.
+// Element forces: one effect per element kind the model has (structure/elements registry), in registry order,
+// ahead of the loads, with the damping the `effects:` section asked for.
 void addElementForces(Scene& scene, const ElementDamping& damping) {
   const Model& model = *scene.model;
-  MembraneViscosity mv;
-  CableViscosity cv;
-  mv.beta = cv.beta = damping.beta;
-  mv.bulkB1 = cv.bulkB1 = damping.bulkB1;
-  if (model.membranes.count > 0) {
-    auto m = std::make_unique<MembraneForces>(model.membranes, mv);
-    scene.membrane = m.get();
-    scene.effects.push_back(std::move(m));
-    scene.enabledEffects.insert(scene.enabledEffects.begin(), "membrane");
-  }
-  if (model.cables.count > 0) {
-    auto c = std::make_unique<CableForces>(model.cables, cv);
-    scene.cable = c.get();
-    scene.effects.push_back(std::move(c));
-    scene.enabledEffects.insert(scene.enabledEffects.begin(), "cable");
-  }
+  for (const ElementKind* kind : elementKinds())
+    if (kind->count(model) > 0) {
+      scene.effects.push_back(kind->makeForces(model, damping));
+      scene.enabledEffects.insert(scene.enabledEffects.begin(), kind->name());
+    }
 }
 
 // ---------------------------------------------------------------- builders: spec -> run state

@@ -8,13 +8,14 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
-#include "structure/effects/CableForces.hpp"
 #include "structure/effects/Effect.hpp"
 #include "structure/effects/InterfacePressure.hpp"
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/integrate/CentralDifference.hpp"
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/MassScaling.hpp"
 #include "structure/model/Model.hpp"
@@ -28,10 +29,14 @@ struct Scene {
   std::string title;
   std::unique_ptr<Model> model;
   std::vector<std::unique_ptr<Effect>> effects;
-  const MembraneForces* membrane = nullptr;  ///< owned by `effects`; null without triangles
-  const CableForces* cable = nullptr;
-  InterfacePressure* interfacePressure = nullptr;  ///< set when the scene declares a `coupling` interface
-  WindowLoad interfaceLoadRule = WindowLoad::Mean;
+  /// The `coupling:` section: the triangles that receive the flow's load. The scene builds no effect for it:
+  /// the coupling participant owns the load and adds the InterfacePressure effect that reads it.
+  struct CouplingInterface {
+    std::vector<int> triangles;  ///< model node indices, 3 per triangle
+    std::vector<int> nodes;      ///< interface nodes (model indices, ascending): the order of per-node values
+    LoadInterpolation loadInWindow = LoadInterpolation::ConstantMean;
+  };
+  std::optional<CouplingInterface> couplingInterface;  ///< set when the scene declares `coupling`
   Constraints constraints;
   TimeControl time;
   SolverControl solver;

@@ -43,7 +43,7 @@ scene() {  # scene FILE EXTRA: the 8x8 drum of the unit tests plus EXTRA
 
 scene good.yaml $'probes:\n  centre: {type: displacement, nodes: {nearest: [0, 0, 0]}, component: z}\n'
 
-# Command-line errors (CLI11 used to exit with 105-114).
+# Command-line errors of every subcommand (CLI11 used to exit with 105-114).
 expect 2 "A subcommand is required" -- "$fsi"
 expect 2 "unknown command 'bogus'; commands: run" -- "$fsi" bogus
 expect 2 "scene is required" -- "$fsi" run --out o
@@ -53,8 +53,15 @@ expect 2 "--bogus" -- "$fsi" run good.yaml --out o --bogus
 expect 2 "--quadrature-level" -- "$fsi" map-check a.msh b.msh --quadrature-level 4294967297
 expect 2 "--tolerance" -- "$fsi" map-check a.msh b.msh --tolerance inf
 expect 2 "run 'fsi run --help'" -- "$fsi" run good.yaml --out o --bogus
+expect 2 "run 'fsi validate --help'" -- "$fsi" validate
+expect 2 "run 'fsi map-check --help'" -- "$fsi" map-check a.msh
+expect 2 "run 'fsi map-check --help'" -- "$fsi" map-check a.msh b.msh --tolerance
+expect 2 "run 'fsi plot --help'" -- "$fsi" plot
+expect 2 "pink" -- "$fsi" plot . --color pink
+expect 2 "--unknown-option" -- "$fsi" plot . --unknown-option
 expect 0 "Usage" -- "$fsi" --help
 expect 0 "--set" -- "$fsi" run --help
+expect 0 "--color" -- "$fsi" plot --help
 
 # Files and directories.
 expect 2 "missing.yaml: cannot open scene file" -- "$fsi" run missing.yaml --out o

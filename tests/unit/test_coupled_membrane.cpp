@@ -10,6 +10,7 @@
 #include "TestScenes.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
+#include "coupling/scheme/acceleration/IqnIls.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
 
@@ -71,9 +72,7 @@ CoupledRun runCoupled(SchemeKind kind, double addedMass, double dt, int windows)
   cfg.endTime = windows * dt;
   cfg.relativeTolerance = 1e-8;
   cfg.maxIterations = 100;
-  AccelerationConfig acc;
-  acc.kind = AccelerationKind::IqnIls;
-  CouplingScheme scheme(cfg, s, kind == SchemeKind::Implicit ? makeAcceleration(acc) : nullptr);
+  CouplingScheme scheme(cfg, s, kind == SchemeKind::Implicit ? std::make_unique<IqnIls>() : nullptr);
   const Eigen::VectorXd p0 = Eigen::VectorXd::Constant(s.numInterfaceNodes(), kPext);
   scheme.initialize(0.0, Eigen::VectorXd::Zero(3 * s.numInterfaceNodes()), p0);
   CoupledRun r;

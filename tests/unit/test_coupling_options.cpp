@@ -12,6 +12,9 @@
 #include "TestScenes.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/scheme/CouplingOptions.hpp"
+#include "coupling/scheme/acceleration/AccelerationRegistry.hpp"
+#include "coupling/scheme/acceleration/Aitken.hpp"
+#include "coupling/scheme/acceleration/IqnIls.hpp"
 #include "structure/scene/NearestName.hpp"
 #include "structure/scene/Scene.hpp"
 
@@ -298,6 +301,37 @@ TEST(CouplingOptions, ConfigAndAccelerationFromValues) {
   EXPECT_EQ(makeAcceleration(v)->name(), "iqn-ils(q=8)");
   const OptionValues a = couplingOptionSchema().validate(with(implicitCase(), "acceleration", "aitken"));
   EXPECT_EQ(makeAcceleration(a)->name(), "aitken");
+}
+
+TEST(CouplingOptions, AccelerationNamesAndOptionsComeFromTheRegistry) {
+  // The valid values of `acceleration` are the registry's names, in its order.
+  const OptionSchema schema = couplingOptionSchema();
+  std::vector<std::string> names;
+  for (const AccelerationEntry& e : accelerationEntries()) names.push_back(e.name);
+  ASSERT_GE(names.size(), 3u);
+  for (const OptionSpec& o : schema.specs()) {
+    if (o.key == "acceleration") {
+      EXPECT_EQ(o.choices, names);
+    }
+  }
+  EXPECT_EQ(findAcceleration("nonsense"), nullptr);
+  for (const AccelerationEntry& e : accelerationEntries()) {
+    EXPECT_EQ(findAcceleration(e.name), &e);
+    // Each of its options is in the table, used with `acceleration <its name>`, and the implicit case
+    // with only the name and that entry's defaults makes it.
+    for (const OptionSpec& o : e.options) {
+      bool listed = false;
+      for (const OptionSpec& s : schema.specs())
+        for (const OptionCondition& c : s.when)
+          listed = listed || (s.key == o.key && c.key == "acceleration" && c.values == std::vector{e.name});
+      EXPECT_TRUE(listed) << e.name << " " << o.key;
+    }
+    const OptionValues v = schema.validate(minimal({{"scheme", {"implicit"}}, {"acceleration", {e.name}}}));
+    EXPECT_NE(makeAcceleration(v), nullptr) << e.name;
+  }
+  // A misspelt name gets the registry's nearest one.
+  const std::string error = errorOf(with(implicitCase(), "acceleration", "aitkin"));
+  EXPECT_NE(error.find("did you mean 'aitken'"), std::string::npos) << error;
 }
 
 TEST(CouplingOptions, EditDistanceAndTable) {

@@ -170,6 +170,7 @@ StructureParticipant drum() {
 
 // n windows of dt through solve() with the scheme's clock t0 + k dt and zero interface forces.
 void run(StructureParticipant& s, double t0, double dt, int from, int to, bool record = false) {
+  s.setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
   const Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * s.numInterfaceNodes());
   for (int k = from; k < to; ++k) {
     s.solve(t0 + k * dt, dt, f, f);

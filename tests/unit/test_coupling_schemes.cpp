@@ -1,6 +1,7 @@
 // Coupling schemes on reduced models with known answers (no fluid solver needed):
 //  * a piston: structure (m_s, c, k) pushing an incompressible fluid of added mass m_a, plus a known force;
-//  * a string of n dofs under the same kind of fluid, with a full (non-diagonal) added-mass matrix.
+//  * a string of n dofs under the same kind of fluid, with a full (non-diagonal) added-mass matrix;
+//  * subcycling (v): the real explicit structure (StructureParticipant, a drum film) under such a fluid.
 // The monolithic solution is the structure with mass M_s + M_a. Derivations: docs/COUPLING.md.
 // CouplingTable.* prints the iteration table of docs/COUPLING.md.
 #include <gtest/gtest.h>
@@ -10,14 +11,21 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "TestScenes.hpp"
+#include "coupling/StructureParticipant.hpp"
 #include "coupling/scheme/Acceleration.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
 #include "coupling/scheme/Subcycling.hpp"
 #include "coupling/scheme/TimeInterpolation.hpp"
+#include "coupling/scheme/acceleration/Aitken.hpp"
+#include "coupling/scheme/acceleration/ConstantRelaxation.hpp"
+#include "coupling/scheme/acceleration/IqnIls.hpp"
+#include "structure/scene/Scene.hpp"
 
 using namespace fsi::coupling;
 using Eigen::MatrixXd;
@@ -122,39 +130,6 @@ class NewmarkStructure final : public StructureSolver {
   State s_, saved_;
 };
 
-// Explicit central differences in velocity-Verlet form with a lumped mass, stable for h < 2 / omega_max.
-class LeapfrogStepper final : public StructureStepper {
- public:
-  LeapfrogStepper(VectorXd mass, MatrixXd k, const VectorXd& x0, const VectorXd& v0)
-      : invMass_(mass.cwiseInverse()), k_(std::move(k)) {
-    s_ = {x0, v0};
-    const VectorXd s = invMass_.cwiseSqrt();
-    const double w2 =
-        Eigen::SelfAdjointEigenSolver<MatrixXd>(s.asDiagonal() * k_ * s.asDiagonal(), Eigen::EigenvaluesOnly)
-            .eigenvalues()
-            .maxCoeff();
-    stable_ = 2.0 / std::sqrt(w2);
-  }
-  double stableTimeStep() const override { return stable_; }
-  void step(double, double h, const VectorXd& f0, const VectorXd& f1) override {
-    s_.v += 0.5 * h * invMass_.cwiseProduct(f0 - k_ * s_.x);
-    s_.x += h * s_.v;
-    s_.v += 0.5 * h * invMass_.cwiseProduct(f1 - k_ * s_.x);
-  }
-  VectorXd interfaceDisplacement() const override { return s_.x; }
-  void saveCheckpoint() override { saved_ = s_; }
-  void restoreCheckpoint() override { s_ = saved_; }
-
- private:
-  struct State {
-    VectorXd x, v;
-  };
-  VectorXd invMass_;
-  MatrixXd k_;
-  double stable_;
-  State s_, saved_;
-};
-
 struct Problem {
   MatrixXd ms, c, k, ma;
   Forcing forcing;
@@ -239,17 +214,18 @@ Problem stringModel(int n, double mu, double omega1Dt, double forcing = 0.01, do
   return p;
 }
 
+// Makes a fresh acceleration for one run.
+using AccelerationFactory = std::function<std::unique_ptr<Acceleration>()>;
+
 struct RunSetup {
   SchemeKind scheme = SchemeKind::Implicit;
   double dt = 1.0;
   int windows = 100;
   int extrapolationOrder = 1;
-  AccelerationConfig acceleration;
+  AccelerationFactory acceleration;
   double relTol = 1e-8;
   int maxIterations = 500;
   Kinematics kinematics = Kinematics::Newmark;
-  bool subcycled = false;  // leapfrog structure (undamped) instead of Newmark
-  SubcyclingOptions subcycling;
   double blowUp = 1e6;  // stop once |d| exceeds this many times the largest monolithic |d|
 };
 
@@ -257,7 +233,6 @@ struct Trace {
   std::vector<VectorXd> d;  // accepted end-of-window displacements, d[0] = x0
   CouplingStatistics stats;
   bool blewUp = false;
-  int substeps = 0;
 };
 
 std::vector<VectorXd> monolithic(const Problem& p, double dt, int windows) {
@@ -289,9 +264,7 @@ std::vector<VectorXd> sampleExact(const Problem& p, double dt, int windows) {
 Trace simulate(const Problem& p, const RunSetup& s) {
   AddedMassFluid fluid(p.ma, p.forcing, s.kinematics, p.x0, p.v0, p.a0());
   NewmarkStructure newmark(p.ms, p.c, p.k, p.x0, p.v0, p.f0());
-  LeapfrogStepper leapfrog(p.ms.diagonal(), p.k, p.x0, p.v0);
-  SubcycledStructure subcycled(leapfrog, s.subcycling);
-  StructureSolver& structure = s.subcycled ? static_cast<StructureSolver&>(subcycled) : newmark;
+  StructureSolver& structure = newmark;
 
   CouplingConfig cfg;
   cfg.kind = s.scheme;
@@ -301,8 +274,7 @@ Trace simulate(const Problem& p, const RunSetup& s) {
   cfg.relativeTolerance = s.relTol;
   cfg.absoluteTolerance = 1e-14;
   cfg.maxIterations = s.maxIterations;
-  CouplingScheme scheme(cfg, structure,
-                        s.scheme == SchemeKind::Implicit ? makeAcceleration(s.acceleration) : nullptr);
+  CouplingScheme scheme(cfg, structure, s.scheme == SchemeKind::Implicit ? s.acceleration() : nullptr);
 
   const double limit = s.blowUp * std::max(maxNorm(monolithic(p, s.dt, s.windows)), 1e-300);
   Trace tr;
@@ -317,26 +289,21 @@ Trace simulate(const Problem& p, const RunSetup& s) {
     }
   }
   tr.stats = scheme.statistics();
-  tr.substeps = subcycled.lastSubsteps();
   return tr;
 }
 
-AccelerationConfig constant(double omega) {
-  AccelerationConfig a;
-  a.kind = AccelerationKind::Constant;
-  a.omega = omega;
-  return a;
+AccelerationFactory constant(double omega) {
+  return [omega] { return std::make_unique<ConstantRelaxation>(omega); };
 }
-AccelerationConfig aitken() {
-  AccelerationConfig a;
-  a.kind = AccelerationKind::Aitken;
-  return a;
+AccelerationFactory aitken() {
+  return [] { return std::make_unique<Aitken>(); };
 }
-AccelerationConfig iqn(int reuse = 0) {
-  AccelerationConfig a;
-  a.kind = AccelerationKind::IqnIls;
-  a.iqn.reuseSteps = reuse;
-  return a;
+AccelerationFactory iqn(int reuse = 0) {
+  return [reuse] {
+    IqnIlsOptions o;
+    o.reuseSteps = reuse;
+    return std::make_unique<IqnIls>(o);
+  };
 }
 // Seeded, so the result does not depend on which other tests ran before (Eigen's Random uses rand()).
 MatrixXd randomOrthogonal(int n) {
@@ -504,7 +471,7 @@ TEST(CouplingScheme, ImplicitCallSequenceAndCheckpointFlags) {
   cfg.timeWindowSize = dt;
   cfg.endTime = 3 * dt;
   cfg.relativeTolerance = 1e-10;
-  CouplingScheme scheme(cfg, structure, makeAcceleration(iqn()));
+  CouplingScheme scheme(cfg, structure, iqn()());
 
   EXPECT_THROW(scheme.advance(VectorXd::Zero(1)), CouplingError);
   EXPECT_FALSE(scheme.isCouplingOngoing());
@@ -569,11 +536,11 @@ TEST(CouplingScheme, RejectsBadConfiguration) {
   const Problem p = piston(1.0, 0.1);
   NewmarkStructure s(p.ms, p.c, p.k, p.x0, p.v0, p.f0());
   CouplingConfig cfg;
-  EXPECT_THROW(CouplingScheme(cfg, s, makeAcceleration(iqn())), std::invalid_argument);  // no window size
+  EXPECT_THROW(CouplingScheme(cfg, s, iqn()()), std::invalid_argument);  // no window size
   cfg.timeWindowSize = 1.0;
   EXPECT_THROW(CouplingScheme(cfg, s), std::invalid_argument);  // implicit without acceleration
   cfg.extrapolationOrder = 3;
-  EXPECT_THROW(CouplingScheme(cfg, s, makeAcceleration(iqn())), std::invalid_argument);
+  EXPECT_THROW(CouplingScheme(cfg, s, iqn()()), std::invalid_argument);
 }
 
 TEST(CouplingScheme, NonConvergenceIsReportedOrThrown) {
@@ -586,7 +553,7 @@ TEST(CouplingScheme, NonConvergenceIsReportedOrThrown) {
     cfg.maxIterations = 3;
     cfg.relativeTolerance = 1e-12;
     cfg.throwOnNonConvergence = doThrow;
-    CouplingScheme scheme(cfg, s, makeAcceleration(constant(0.01)));  // far too slow for 3 iterations
+    CouplingScheme scheme(cfg, s, constant(0.01)());  // far too slow for 3 iterations
     scheme.initialize(0.0, p.x0, p.f0());
     if (doThrow) {
       EXPECT_THROW(runTimeWindow(scheme, fluid), CouplingError);
@@ -607,7 +574,7 @@ TEST(CouplingCheckpoint, RestoredIterationReproducesTheFirstPass) {
   CouplingConfig cfg;
   cfg.timeWindowSize = 1.0;
   cfg.relativeTolerance = 1e-10;
-  CouplingScheme scheme(cfg, structure, makeAcceleration(iqn()));
+  CouplingScheme scheme(cfg, structure, iqn()());
   scheme.initialize(0.0, p.x0, p.f0());
   for (int w = 0; w < 5; ++w) runTimeWindow(scheme, fluid);  // a non-trivial state with history
 
@@ -678,7 +645,7 @@ TEST(CouplingImplicit, ReproducesMonolithicNewmarkAboveTheStaggeredLimit) {
   for (const double mu : {10.0, 100.0}) {
     const Problem p = piston(mu, 0.1, 0.5);
     const double lambda = p.iterationSpectrum(1.0)(0);
-    for (const AccelerationConfig& a : {constant(1.4 / (1.0 + lambda)), aitken(), iqn()}) {
+    for (const AccelerationFactory& a : {constant(1.4 / (1.0 + lambda)), aitken(), iqn()}) {
       RunSetup s;
       s.windows = 300;
       s.acceleration = a;
@@ -735,7 +702,7 @@ TEST(CouplingImplicit, MultiDofStringMatchesMonolithicWithEveryAcceleration) {
     const Problem p = stringModel(30, mu, 0.1);
     EXPECT_GT((p.ma - MatrixXd(p.ma.diagonal().asDiagonal())).norm(), 0.5 * p.ma.norm());  // really full
     const double omega = optimalOmega(p.iterationSpectrum(1.0));
-    for (const AccelerationConfig& a : {constant(omega), aitken(), iqn(), iqn(8)}) {
+    for (const AccelerationFactory& a : {constant(omega), aitken(), iqn(), iqn(8)}) {
       RunSetup s;
       s.windows = 60;
       s.acceleration = a;
@@ -784,46 +751,153 @@ TEST(CouplingSubcycling, TimeInterpolationRules) {
   EXPECT_TRUE(TimeInterpolation(LoadInterpolation::ConstantEnd, a, b).at(0.1).isApprox(b));
 }
 
+// The structure of these tests is the product's: the drum film of TestScenes.hpp as a StructureParticipant
+// (its CentralDifference through SubcycledStructure, the path of a coupled run). The fluid stays reduced: an
+// added mass mu M_s on the film's nodes (M_s its lumped mass) with the BDF2 kinematics of an ALE solver, plus
+// a known load F(t) = F_p sin(omega t) (F_p: the nodal forces of 200 Pa on the flat film). The monolithic
+// answer is the same film with density (1 + mu) rho under F(t) alone (a membrane's lumped mass is
+// proportional to its density), integrated with windows ten times shorter.
+
 namespace {
-RunSetup subcycledSetup(LoadInterpolation interp, double safety, int windows) {
-  RunSetup s;
-  s.kinematics = Kinematics::Bdf2;
-  s.subcycled = true;
-  s.subcycling.interpolation = interp;
-  s.subcycling.safety = safety;
-  s.windows = windows;
-  s.acceleration = iqn(4);
-  s.relTol = 1e-10;
+
+const std::string kFilm = fsi::test::drumScene(R"(coupling: {interface: sheet}
+time: {end: 1.0}
+)");
+
+const char* sceneName(LoadInterpolation interp) {
+  return interp == LoadInterpolation::ConstantMean  ? "mean"
+         : interp == LoadInterpolation::ConstantEnd ? "end"
+                                                    : "linear";
+}
+
+std::unique_ptr<StructureParticipant> film(double densityFactor, LoadInterpolation interp) {
+  auto s = std::make_unique<StructureParticipant>(
+      fsi::structure::loadSceneFromString(kFilm, "film.yaml",
+                                          {"materials.film.density=" + std::to_string(1000.0 * densityFactor),
+                                           std::string("coupling.load_in_window=") + sceneName(interp)}));
+  s->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
   return s;
 }
+
+constexpr double kFilmWindow = 1e-3;
+constexpr int kFilmWindows = 100;
+
+// F(t): 200 Pa on the flat film, lumped (A/3 per triangle node), along z, times sin(omega t) with a period
+// of 40 windows.
+Forcing filmForcing(const StructureParticipant& s) {
+  const InterfaceMesh& m = s.interfaceMesh();
+  VectorXd fp = VectorXd::Zero(3 * Eigen::Index(m.points.size()));
+  const std::vector<int>& tris = m.faceNodes;  // the structure's faces are its triangles
+  for (std::size_t e = 0; e + 2 < tris.size(); e += 3) {
+    const auto& a = m.points[std::size_t(tris[e])];
+    const auto& b = m.points[std::size_t(tris[e + 1])];
+    const auto& c = m.points[std::size_t(tris[e + 2])];
+    const double area = 0.5 * std::abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    for (int k = 0; k < 3; ++k) fp(3 * Eigen::Index(tris[e + std::size_t(k)]) + 2) += 200.0 * area / 3.0;
+  }
+  const double omega = 2.0 * kPi / (40 * kFilmWindow);
+  return [fp, omega](double t) -> VectorXd { return fp * std::sin(omega * t); };
+}
+
+// The monolithic film: density (1 + mu) rho, F(t) as nodal forces, 10 windows per coupling window.
+std::vector<VectorXd> monolithicFilm(double mu) {
+  auto s = film(1.0 + mu, LoadInterpolation::Linear);
+  const Forcing f = filmForcing(*s);
+  const int fine = 10;
+  const double h = kFilmWindow / fine;
+  std::vector<VectorXd> d{VectorXd::Zero(3 * s->numInterfaceNodes())};
+  for (int w = 0; w < kFilmWindows * fine; ++w) {
+    const VectorXd u = s->solve(w * h, h, f(w * h), f((w + 1) * h));
+    if ((w + 1) % fine == 0) d.push_back(u);
+  }
+  return d;
+}
+
+struct FilmRun {
+  std::vector<VectorXd> d;  // accepted end-of-window interface displacements, d[0] = 0
+  int substeps = 0;         // structural steps per window (the last window's)
+  bool blewUp = false;
+  CouplingStatistics stats;
+};
+
+FilmRun coupledFilm(double mu, LoadInterpolation interp, int minSubcycles) {
+  auto s = film(1.0, interp);
+  s->setMinSubcycles(minSubcycles);
+  const fsi::structure::Nodes& N = s->scene().model->nodes;
+  const std::vector<int>& nodes = s->scene().couplingInterface->nodes;
+  const Eigen::Index n = 3 * Eigen::Index(nodes.size());
+  VectorXd ma(n);  // M_a = mu M_s on every dof
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    for (int k = 0; k < 3; ++k) ma(Eigen::Index(3 * i) + k) = mu * N.mass[std::size_t(nodes[i])];
+  const VectorXd zero = VectorXd::Zero(n);
+  // F(0) = 0 and the film starts at rest: a(0) = 0.
+  AddedMassFluid fluid(MatrixXd(ma.asDiagonal()), filmForcing(*s), Kinematics::Bdf2, zero, zero, zero);
+  CouplingConfig cfg;
+  cfg.kind = SchemeKind::Implicit;
+  cfg.timeWindowSize = kFilmWindow;
+  cfg.endTime = kFilmWindows * kFilmWindow;
+  cfg.relativeTolerance = 1e-8;
+  cfg.absoluteTolerance = 1e-14;
+  cfg.maxIterations = 200;
+  IqnIlsOptions o;
+  o.reuseSteps = 4;
+  CouplingScheme scheme(cfg, *s, std::make_unique<IqnIls>(o));
+  scheme.initialize(0.0, zero, zero);
+  FilmRun r;
+  r.d.push_back(zero);
+  while (scheme.isCouplingOngoing()) {
+    try {
+      runTimeWindow(scheme, fluid);
+    } catch (const StructureUnstable&) {
+      r.blewUp = true;
+      break;
+    }
+    r.d.push_back(scheme.acceptedDisplacement());
+    if (!r.d.back().allFinite() || r.d.back().norm() > 1e3) {
+      r.blewUp = true;
+      break;
+    }
+  }
+  if (!r.blewUp) r.substeps = s->subcyclesFor(kFilmWindow);
+  r.stats = scheme.statistics();
+  return r;
+}
+
 }  // namespace
 
 TEST(CouplingSubcycling, TwoSubcycleCountsAgreeWithinTheTimeDiscretisationError) {
   for (const double mu : {0.05, 5.0}) {
-    const Problem p = stringModel(100, mu, 0.1, 0.01, 0.6);
+    const std::vector<VectorXd> exact = monolithicFilm(mu);
     for (const LoadInterpolation interp : {LoadInterpolation::ConstantMean, LoadInterpolation::Linear}) {
       if (interp == LoadInterpolation::Linear && mu > 1.0) continue;  // unstable there, see next test
-      const Trace coarse = simulate(p, subcycledSetup(interp, 1.0, 200));
-      const Trace fine = simulate(p, subcycledSetup(interp, 0.3, 200));
-      ASSERT_FALSE(coarse.blewUp || fine.blewUp);
-      EXPECT_GE(coarse.substeps, 4);  // really subcycled: 4 / 11 at mu 0.05, 8 / 27 at mu 5
+      const FilmRun coarse = coupledFilm(mu, interp, 1);
+      const FilmRun fine = coupledFilm(mu, interp, 3 * coarse.substeps);
+      ASSERT_FALSE(coarse.blewUp || fine.blewUp) << toString(interp) << " mu " << mu;
+      EXPECT_EQ(coarse.stats.notConverged, 0);
+      EXPECT_GE(coarse.substeps, 4);  // really subcycled
       EXPECT_GE(fine.substeps, 2 * coarse.substeps);
-      const std::vector<VectorXd> exact = sampleExact(p, 1.0, 200);
       const double eCoarse = relativeDifference(coarse.d, exact), eFine = relativeDifference(fine.d, exact);
       const double between = relativeDifference(coarse.d, fine.d);
+      std::printf("mu %g %s: substeps %d / %d, error %.3g / %.3g, between %.3g, iterations %.2f\n", mu,
+                  toString(interp), coarse.substeps, fine.substeps, eCoarse, eFine, between,
+                  coarse.stats.meanIterations());
       EXPECT_LT(eCoarse, 0.05) << toString(interp) << " mu " << mu;
-      // The structure's substeps are not what limits the accuracy: the fluid's window is.
-      EXPECT_LT(between, 0.3 * std::max(eCoarse, eFine)) << toString(interp) << " mu " << mu;
+      EXPECT_LT(eFine, 0.05) << toString(interp) << " mu " << mu;
+      // The structure's substeps are not what limits the accuracy: three times as many change the answer by
+      // less than its time-discretisation error. (On this nonlinear film, unlike a linear string, the two
+      // are of the same order under a heavy added mass: docs/COUPLING.md.)
+      EXPECT_LT(between, std::max(eCoarse, eFine)) << toString(interp) << " mu " << mu;
     }
   }
 }
 
 TEST(CouplingSubcycling, LinearInterpolationIsMoreAccurateButUnstableUnderHeavyAddedMass) {
   auto error = [](double mu, LoadInterpolation interp) {
-    const Problem p = stringModel(100, mu, 0.1, 0.01, 0.6);
-    const Trace tr = simulate(p, subcycledSetup(interp, 1.0, 200));
-    return tr.blewUp ? std::numeric_limits<double>::infinity()
-                     : relativeDifference(tr.d, sampleExact(p, 1.0, 200));
+    const FilmRun r = coupledFilm(mu, interp, 1);
+    const double e =
+        r.blewUp ? std::numeric_limits<double>::infinity() : relativeDifference(r.d, monolithicFilm(mu));
+    std::printf("mu %g %s: error %.3g\n", mu, toString(interp), e);
+    return e;
   };
   EXPECT_LT(error(0.05, LoadInterpolation::Linear), error(0.05, LoadInterpolation::ConstantMean));
   EXPECT_TRUE(std::isinf(error(5.0, LoadInterpolation::Linear)));
@@ -852,7 +926,7 @@ TEST(CouplingTable, IterationsPerWindowOverAddedMassRatio) {
     const Problem p = stringModel(n, mu, 0.1);
     const VectorXd spectrum = p.iterationSpectrum(1.0);
     const double omega = optimalOmega(spectrum);
-    auto cell = [&](const AccelerationConfig& a) {
+    auto cell = [&](const AccelerationFactory& a) {
       RunSetup s;
       s.windows = windows;
       s.acceleration = a;

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "structure/effects/CableForces.hpp"
 #include "structure/effects/ExternalLoads.hpp"
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/elements/CableForces.hpp"
+#include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/integrate/MassScaling.hpp"
 #include "structure/run/Simulation.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/elements/MembraneForces.hpp"
 #include "structure/material/WrinklingMembrane.hpp"
 #include "structure/model/Model.hpp"
 #include "structure/scene/Generators.hpp"

@@ -18,6 +18,7 @@
 #include "coupling/interface/SurfaceSearch.hpp"
 #include "coupling/mapping/L2Projection.hpp"
 #include "coupling/mapping/MapCheck.hpp"
+#include "coupling/scheme/CouplingOptions.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::coupling {
@@ -718,3 +719,25 @@ TEST(ProjectionMapCheck, ReportsAccuracyAndConservation) {
 
 }  // namespace
 }  // namespace fsi::coupling
+
+TEST(MassMatrixNames, OneListForEveryReader) {
+  // The adapter's `projection` option offers exactly the names the projection understands, and every name
+  // reads back as the mass matrix it prints as.
+  using namespace fsi::coupling;
+  for (const std::string& name : massMatrixNames()) {
+    MassMatrix m = MassMatrix::Consistent;
+    ASSERT_TRUE(massMatrixFromName(name, m)) << name;
+    EXPECT_EQ(name, toString(m));
+  }
+  MassMatrix m = MassMatrix::Lumped;
+  EXPECT_FALSE(massMatrixFromName("lumpd", m));
+  EXPECT_EQ(m, MassMatrix::Lumped);
+  bool found = false;
+  const OptionSchema schema = couplingOptionSchema();
+  for (const auto& spec : schema.specs())
+    if (spec.key == "projection") {
+      found = true;
+      EXPECT_EQ(spec.choices, massMatrixNames());
+    }
+  EXPECT_TRUE(found);
+}

@@ -85,7 +85,7 @@ TEST_F(SceneInterfaceTest, IsTheCoupledRunsInterface) {
   // Only the interface triangles (the sheet), not the second film.
   EXPECT_EQ(m.numPoints(), 9 * 9 + 8 * 8);
   EXPECT_EQ(m.numFaces(), 4 * 8 * 8);
-  const auto& nodes = scene.interfacePressure->nodes();
+  const auto& nodes = scene.couplingInterface->nodes;
   ASSERT_EQ(std::size_t(m.numPoints()), nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i)  // point i is interface node i, at its reference position
     for (int k = 0; k < 3; ++k) EXPECT_EQ(m.points[i][k], scene.model->nodes.X[3 * nodes[i] + k]);

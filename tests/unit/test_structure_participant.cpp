@@ -6,6 +6,7 @@
 #include "TestScenes.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/mapping/L2Projection.hpp"
+#include "coupling/scheme/TimeInterpolation.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
 
@@ -45,7 +46,7 @@ TEST(StructureParticipant, UniformInterfacePressureMatchesTheFollowerPressureEff
   structure::runSimulation(ref, opt);
   const auto u = s.interfaceDisplacement();
   const auto& N = ref.model->nodes;
-  const auto& nodes = ref.interfacePressure->nodes();
+  const auto& nodes = ref.couplingInterface->nodes;
   double maxDiff = 0, maxU = 0;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     maxDiff = std::max(maxDiff, std::abs(u[3 * i + 2] - (N.x[3 * nodes[i] + 2] - N.X[3 * nodes[i] + 2])));
@@ -143,7 +144,7 @@ TEST(StructureParticipant, NodalForcesAreAppliedAsGivenWithTheWindowRule) {
     for (int i = 0; i < n; ++i) expected += 0.5 * (f0[3 * i + k] + f1[3 * i + k]);
     EXPECT_NEAR(F[k], expected, 1e-12 * std::abs(expected)) << "component " << k;
   }
-  // Through the StructureSolver interface a load vector of 3 values per node means forces.
+  // Through the StructureSolver interface the loads are of the kind set last (forces, by setForces).
   Eigen::VectorXd a = Eigen::Map<Eigen::VectorXd>(f0.data(), 3 * n), b = a;
   s.solve(s.time(), 1e-3, a, b);
   const auto G = s.interfaceForce();
@@ -182,4 +183,75 @@ TEST(StructureParticipant, MinimumSubcyclesAreTakenAndRestartStateRoundTrips) {
   EXPECT_EQ(t.interfaceDisplacement(), s.interfaceDisplacement());
   EXPECT_EQ(t.integrator().energy().values(), s.integrator().energy().values());
   EXPECT_LT(t.integrator().energy().balanceError(), 1e-12);
+}
+
+TEST(StructureParticipant, ThreeValuesPerNodeAreRefusedAsPressureNotReadAsForces) {
+  // The kind of the loads is stated, never guessed from their number: a pressure vector three times the
+  // interface's length (e.g. sampled on another mesh) was silently applied as nodal forces.
+  StructureParticipant s = drum();
+  const int n = s.numInterfaceNodes();
+  const Eigen::VectorXd p = Eigen::VectorXd::Constant(3 * n, 100.0);
+  EXPECT_THROW(s.solve(s.time(), 1e-3, p, p), std::invalid_argument);
+  EXPECT_EQ(s.time(), 0.0);
+  EXPECT_EQ(s.structuralSteps(), 0);
+}
+
+TEST(StructureParticipant, LoadKindIsExplicitAndEachKindChecksItsLength) {
+  StructureParticipant s = drum();
+  const int n = s.numInterfaceNodes();
+  EXPECT_EQ(s.loadKind(), structure::InterfaceLoadKind::Pressure);
+  s.setLoadKind(structure::InterfaceLoadKind::NodalForces);
+  // One value per node is no force vector: refused, naming the kind and both counts.
+  const Eigen::VectorXd perNode = Eigen::VectorXd::Constant(n, 1.0);
+  try {
+    s.solve(0.0, 1e-3, perNode, perNode);
+    ADD_FAILURE() << "nodal forces of one value per node were accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("nodal forces"), std::string::npos) << what;
+    EXPECT_NE(what.find(std::to_string(3 * n)), std::string::npos) << what;
+  }
+  // Three per node: forces, summed as given (z only here).
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * n);
+  for (int i = 0; i < n; ++i) f[3 * i + 2] = 0.5;
+  s.solve(0.0, 1e-3, f, f);
+  EXPECT_NEAR(s.interfaceForce()[2], 0.5 * n, 1e-12 * n);
+  // Back to pressure: the window's forces are dropped, and a pressure vector reads as one.
+  s.setLoadKind(structure::InterfaceLoadKind::Pressure);
+  EXPECT_EQ(s.interfaceForce()[2], 0.0);
+  s.solve(s.time(), 1e-3, 300.0 * perNode, 300.0 * perNode);
+  EXPECT_NEAR(s.interfaceForce()[2], 300.0, 1e-9 * 300.0);  // over the unit square's projected area
+}
+
+TEST(StructureParticipant, LinearWindowLoadIsTheCouplingLibrarysInterpolationPerSubstep) {
+  // With `load_in_window: linear` each structural step of the window sees TimeInterpolation's value at its
+  // start; the same window driven substep by substep with those loads held gives the same state.
+  const std::string linear = test::drumScene(R"(coupling: {interface: sheet, load_in_window: linear}
+time: {end: 1.0}
+)");
+  StructureParticipant s(structure::loadSceneFromString(linear, "drum.yaml"));
+  StructureParticipant r(structure::loadSceneFromString(linear, "drum.yaml"));
+  const int n = s.numInterfaceNodes(), m = s.subcyclesFor(2e-3);
+  ASSERT_GE(m, 3);
+  const std::vector<double> p0(n, 100.0), p1(n, 400.0);
+  s.setPressure(p0, p1);
+  s.advance(2e-3);
+  EXPECT_EQ(s.structuralSteps(), m);
+  const Eigen::VectorXd a = Eigen::VectorXd::Constant(n, 100.0), b = Eigen::VectorXd::Constant(n, 400.0);
+  const TimeInterpolation loads(LoadInterpolation::Linear, a, b);
+  for (int i = 0; i < m; ++i) {
+    const Eigen::VectorXd q = loads.at(double(i) / m);
+    const std::vector<double> held(q.data(), q.data() + q.size());
+    r.setPressure(held, held);  // `linear` with equal ends: the value itself
+    r.advanceTo(i + 1 == m ? 2e-3 : (i + 1) * (2e-3 / m));
+  }
+  EXPECT_EQ(r.structuralSteps(), m);
+  const auto us = s.interfaceDisplacement(), ur = r.interfaceDisplacement();
+  double diff = 0, size = 0;
+  for (std::size_t k = 0; k < us.size(); ++k) {
+    diff = std::max(diff, std::abs(us[k] - ur[k]));
+    size = std::max(size, std::abs(us[k]));
+  }
+  EXPECT_GT(size, 0.0);
+  EXPECT_LE(diff, 1e-12 * size);
 }

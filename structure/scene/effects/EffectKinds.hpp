@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
+#include "structure/elements/ElementKind.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/model/Model.hpp"
 #include "structure/scene/SetResolver.hpp"
@@ -17,12 +18,8 @@
 
 namespace fsi::structure {
 
-/// Damping that the element force kernels apply themselves (stiffness-proportional, bulk viscosity): the
-/// effects only set it; the membrane and cable forces are built with it.
-struct ElementDamping {
-  double beta = 0;    ///< stiffness-proportional Rayleigh damping [s]
-  double bulkB1 = 0;  ///< linear bulk viscosity coefficient
-};
+// ElementDamping (stiffness-proportional β, bulk viscosity b1): structure/elements/ElementKind.hpp; the
+// damping effects only set it, the element kinds' forces are built with it.
 
 /// What an effect's build function may read and add to.
 struct EffectContext {

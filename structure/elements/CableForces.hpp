@@ -6,15 +6,13 @@
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
+#include "structure/elements/ElementKind.hpp"
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure {
 
-struct CableViscosity {
-  double beta = 0;
-  double bulkB1 = 0;
-  bool enabled() const { return beta > 0 || bulkB1 > 0; }
-};
+/// Rayleigh β and bulk viscosity b1 on the strain rate (ρ, c the element's own after mass scaling).
+using CableViscosity = ElementDamping;
 
 class CableForces final : public Effect {
  public:
@@ -29,5 +27,8 @@ class CableForces final : public Effect {
   CableViscosity visc_;
   double minDt_ = 0;  ///< the cable step depends only on reference data: computed once
 };
+
+/// Elastic tension [N] of every cable at configuration x.
+void cableTensions(const Cables& cables, const double* x, std::vector<double>& tension);
 
 }  // namespace fsi::structure

@@ -10,20 +10,21 @@
 // Stress: second Piola–Kirchhoff S from the wrinkling St Venant–Kirchhoff law (WrinklingMembrane.hpp).
 // Forces: f_a = t A0 F S ∇N_a (one-point rule, reference area and thickness), rotated back to global axes.
 // Optional viscous stress (Rayleigh β and linear bulk viscosity b1) from Ė = sym(FᵀḞ).
+// The kinematics and the law live in MembraneKinematics.hpp (shared with the output and the stiffness
+// bounds); the rest of the element kind (mass, scaling, fields, diagnosis) in MembraneElement.
 
 #include <cstdint>
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
+#include "structure/elements/ElementKind.hpp"
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure {
 
-struct MembraneViscosity {
-  double beta = 0;    ///< stiffness-proportional Rayleigh damping [s]: S_v = β C:Ė
-  double bulkB1 = 0;  ///< linear bulk viscosity coefficient: S_v += b1 ρ c L_e tr(Ė) I
-  bool enabled() const { return beta > 0 || bulkB1 > 0; }
-};
+/// Stiffness-proportional Rayleigh damping S_v = β C:Ė and bulk viscosity S_v += b1 ρ c L_e tr(Ė) I (ρ, c the
+/// element's density and wave speed after mass scaling).
+using MembraneViscosity = ElementDamping;
 
 /// Per-element results for output and diagnosis.
 struct MembraneStressField {
@@ -45,5 +46,8 @@ class MembraneForces final : public Effect {
   const MembraneTriangles& el_;
   MembraneViscosity visc_;
 };
+
+/// Stresses, states and strains of every triangle at configuration x (the output fields and stress probes).
+void membraneStresses(const MembraneTriangles& elements, const double* x, MembraneStressField& out);
 
 }  // namespace fsi::structure

@@ -1,63 +1,11 @@
-#include "coupling/scheme/Acceleration.hpp"
+#include "coupling/scheme/acceleration/IqnIls.hpp"
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <vector>
 
 namespace fsi::coupling {
-
-// Relaxation factors are limited to (0, 1]: on an added-mass problem the iteration Jacobian has eigenvalues
-// -lambda <= 0, and a factor above 1 contracts no mode better than 1 does (docs/COUPLING.md). The adapter's
-// option table (CouplingOptions) has the same ranges.
-ConstantRelaxation::ConstantRelaxation(double omega) : omega_(omega) {
-  if (!(omega > 0.0 && omega <= 1.0))
-    throw std::invalid_argument(
-        fmt::format("ConstantRelaxation: omega = {:g}, valid: 0 < omega <= 1", omega));
-}
-
-Eigen::VectorXd ConstantRelaxation::compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) {
-  return d + omega_ * (dTilde - d);
-}
-
-Aitken::Aitken(AitkenOptions options) : opt_(options), omega_(options.initialOmega) {
-  if (!(opt_.minOmega > 0.0 && opt_.minOmega <= opt_.maxOmega))
-    throw std::invalid_argument("Aitken: need 0 < minOmega <= maxOmega");
-  // The first factor is clamped to [minOmega, maxOmega] like every other one.
-  if (!(opt_.initialOmega > 0.0 && opt_.initialOmega <= 1.0))
-    throw std::invalid_argument(
-        fmt::format("Aitken: initialOmega = {:g}, valid: 0 < initialOmega <= 1", opt_.initialOmega));
-}
-
-double Aitken::clampOmega(double w) const {
-  const double s = w < 0.0 ? -1.0 : 1.0;
-  return s * std::clamp(std::abs(w), opt_.minOmega, opt_.maxOmega);
-}
-
-Eigen::VectorXd Aitken::compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) {
-  Eigen::VectorXd r = dTilde - d;
-  if (iteration_ == 0) {
-    const double previous = omega_;
-    omega_ = firstWindow_ ? opt_.initialOmega
-                          : std::copysign(std::min(opt_.initialOmega, std::abs(previous)), previous);
-  } else {
-    const Eigen::VectorXd dr = r - previousResidual_;
-    const double den = dr.squaredNorm();
-    // A zero difference carries no curvature information: keep the last factor.
-    if (den > 0.0) omega_ = -omega_ * previousResidual_.dot(dr) / den;
-  }
-  omega_ = clampOmega(omega_);
-  previousResidual_ = r;
-  ++iteration_;
-  return d + omega_ * r;
-}
-
-void Aitken::onTimeWindowComplete() {
-  firstWindow_ = false;
-  iteration_ = 0;
-}
 
 IqnIls::IqnIls(IqnIlsOptions options) : opt_(options) {
   if (!(opt_.initialOmega > 0.0 && opt_.initialOmega <= 1.0))
@@ -144,16 +92,18 @@ void IqnIls::onTimeWindowComplete() {
   iteration_ = 0;
 }
 
-std::unique_ptr<Acceleration> makeAcceleration(const AccelerationConfig& config) {
-  switch (config.kind) {
-    case AccelerationKind::Constant:
-      return std::make_unique<ConstantRelaxation>(config.omega);
-    case AccelerationKind::Aitken:
-      return std::make_unique<Aitken>(config.aitken);
-    case AccelerationKind::IqnIls:
-      return std::make_unique<IqnIls>(config.iqn);
-  }
-  throw std::invalid_argument("makeAcceleration: unknown kind");
+AccelerationEntry iqnIlsEntry() {
+  return {"IQN-ILS",
+          "interface quasi-Newton, inverse Jacobian by least squares",
+          {omegaOption("0.1", "relaxation factor of a window's first iteration"),
+           integerOption("reuse", "0", Bound{0, true}, std::nullopt,
+                         "also use the columns of this many past windows (8 suits a canopy)")},
+          [](const OptionValues& v) -> std::unique_ptr<Acceleration> {
+            IqnIlsOptions o;
+            o.initialOmega = v.real("omega");
+            o.reuseSteps = int(v.integer("reuse"));
+            return std::make_unique<IqnIls>(o);
+          }};
 }
 
 }  // namespace fsi::coupling

@@ -1,4 +1,4 @@
-#include "structure/effects/CableForces.hpp"
+#include "structure/elements/CableForces.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -36,8 +36,10 @@ void cableBlock(const Cables& el, const CableBlock& blk, const CableViscosity& v
       const double rate = ((v[3 * j] - v[3 * i]) * d[0] + (v[3 * j + 1] - v[3 * i + 1]) * d[1] +
                            (v[3 * j + 2] - v[3 * i + 2]) * d[2]) *
                           iL / L0;
-      const double c = 1.0 / el.invWaveSpeed[e];
-      T += (visc.beta * blk.axialStiffness + visc.bulkB1 * blk.density * c * L0 * blk.area) * rate;
+      // Bulk viscosity b1 ρ c A L0 ε̇ with the element's own ρ and c: c² = E/ρ gives ρ c = E/c = E ·
+      // invWaveSpeed, which stays right when mass scaling raised ρ by s (and lowered c). The unscaled ρ would
+      // give a scaled cable the damping ratio b1/s instead of the b1 its damped stable step assumes.
+      T += (visc.beta + visc.bulkB1 * el.invWaveSpeed[e] * L0) * blk.axialStiffness * rate;
     }
     const double s = T * iL;
     for (int k = 0; k < 3; ++k) {
@@ -63,13 +65,17 @@ void CableForces::addForces(ForceContext& ctx) const {
 }
 
 void CableForces::evaluate(const double* x, std::vector<double>& tension) const {
-  tension.assign(el_.count, 0.0);
-  for (const CableBlock& b : el_.blocks)
+  cableTensions(el_, x, tension);
+}
+
+void cableTensions(const Cables& el, const double* x, std::vector<double>& tension) {
+  tension.assign(el.count, 0.0);
+  for (const CableBlock& b : el.blocks)
     for (int e = b.begin; e < b.end; ++e) {
-      const int i = el_.conn[2 * e], j = el_.conn[2 * e + 1];
+      const int i = el.conn[2 * e], j = el.conn[2 * e + 1];
       double L2 = 0;
       for (int k = 0; k < 3; ++k) L2 += (x[3 * j + k] - x[3 * i + k]) * (x[3 * j + k] - x[3 * i + k]);
-      tension[e] = b.axialStiffness * std::max(0.0, (std::sqrt(L2) - el_.restLength[e]) / el_.restLength[e]);
+      tension[e] = b.axialStiffness * std::max(0.0, (std::sqrt(L2) - el.restLength[e]) / el.restLength[e]);
     }
 }
 

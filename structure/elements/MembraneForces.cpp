@@ -1,43 +1,17 @@
-#include "structure/effects/MembraneForces.hpp"
+#include "structure/elements/MembraneForces.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "structure/material/WrinklingMembrane.hpp"
+#include "structure/elements/MembraneKinematics.hpp"
 
 namespace fsi::structure {
 
 namespace {
 
-// In-plane deformation gradient of one triangle as a 3x2 matrix F = [f1 f2]: the images of the reference
-// tangent axes (the element's own edge-aligned reference frame). C = FᵀF removes the element's rotation
-// exactly, so the frame of the current triangle is never built in the force kernel; this is the
-// corotational formulation with the polar rotation, at the cost of a few dot products.
-struct Kinematics {
-  double d21[3], d31[3];      // current edge vectors from node 1
-  double f1[3], f2[3];        // columns of F
-  double n2x, n2y, n3y, tA0;  // reference shape-function gradients (node 1 = −node 2 − node 3) and t·A0
-  double C11, C12, C22;       // right Cauchy–Green tensor
-};
-
-inline void kinematics(const double* __restrict x, const int* n, const double* __restrict g, Kinematics& k) {
-  const double* p1 = x + 3 * n[0];
-  const double* p2 = x + 3 * n[1];
-  const double* p3 = x + 3 * n[2];
-  k.n2x = g[0];
-  k.n2y = -g[1] * g[0] * g[2];
-  k.n3y = g[2];
-  k.tA0 = g[3];
-  for (int i = 0; i < 3; ++i) {
-    k.d21[i] = p2[i] - p1[i];
-    k.d31[i] = p3[i] - p1[i];
-    k.f1[i] = k.d21[i] * k.n2x;
-    k.f2[i] = k.d21[i] * k.n2y + k.d31[i] * k.n3y;
-  }
-  k.C11 = k.f1[0] * k.f1[0] + k.f1[1] * k.f1[1] + k.f1[2] * k.f1[2];
-  k.C12 = k.f1[0] * k.f2[0] + k.f1[1] * k.f2[1] + k.f1[2] * k.f2[2];
-  k.C22 = k.f2[0] * k.f2[0] + k.f2[1] * k.f2[1] + k.f2[2] * k.f2[2];
-}
+using membrane::Kinematics;
+using membrane::kinematics;
+using membrane::stress;
 
 // Squared smallest altitude (2A)²/l_max² of the current triangle (the bulk viscosity's element length), as
 // numerator and denominator.
@@ -64,16 +38,6 @@ inline void altitude2(const Kinematics& k, double& num, double& den) {
 inline double stiffening(const Kinematics& k, double a, double b) {
   const double c1 = std::max(k.C11, k.C22) + std::abs(k.C12);
   return std::max(1.0, a * c1 - b);
-}
-
-template <bool Wrinkling>
-inline WrinkleState stress(const Kinematics& k, const MembraneBlock& blk, double S[3], double& w) {
-  const double e11 = 0.5 * (k.C11 - 1.0), e22 = 0.5 * (k.C22 - 1.0), g12 = k.C12;
-  if constexpr (Wrinkling) {
-    return wrinklingStress(e11, e22, g12, blk.young, blk.c11, blk.poisson, S, w);
-  } else {
-    return elasticStress(e11, e22, g12, blk.c11, blk.poisson, S, w);
-  }
 }
 
 template <bool Wrinkling, bool Viscous, bool Energy>
@@ -119,9 +83,12 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
       const double r22 = k.f2[0] * g2[0] + k.f2[1] * g2[1] + k.f2[2] * g2[2];
       const double r12 = k.f1[0] * g2[0] + k.f1[1] * g2[1] + k.f1[2] * g2[2] + k.f2[0] * g1[0] +
                          k.f2[1] * g1[1] + k.f2[2] * g1[2];  // 2 Ė12
+      // Bulk viscosity b1 ρ c L_e tr(Ė) with the element's own ρ and c: mass scaling raises ρ by s and lowers
+      // c by √s, and c_d² = c11/ρ gives ρ c = c11/c = c11 · invWaveSpeed, scaled or not. With the unscaled
+      // density a scaled element would get the damping ratio b1/s instead of the b1 the damped step below
+      // assumes.
       const double le = std::sqrt(le2);
-      const double c = 1.0 / iws[e];
-      const double bulk = visc.bulkB1 * blk.density * c * le * (r11 + r22);
+      const double bulk = visc.bulkB1 * blk.c11 * iws[e] * le * (r11 + r22);
       S[0] += visc.beta * blk.c11 * (r11 + blk.poisson * r22) + bulk;
       S[1] += visc.beta * blk.c11 * (r22 + blk.poisson * r11) + bulk;
       S[2] += visc.beta * 0.5 * blk.c11 * (1.0 - blk.poisson) * r12;
@@ -185,18 +152,24 @@ void MembraneForces::addForces(ForceContext& ctx) const {
 }
 
 void MembraneForces::evaluate(const double* x, MembraneStressField& out) const {
-  const int ne = el_.count;
+  membraneStresses(el_, x, out);
+}
+
+void membraneStresses(const MembraneTriangles& el, const double* x, MembraneStressField& out) {
+  const int ne = el.count;
   out.cauchy.assign(6 * ne, 0.0);
   out.principal.assign(2 * ne, 0.0);
   out.state.assign(ne, 0.0);
   out.majorStrain.assign(ne, 0.0);
-  for (const MembraneBlock& blk : el_.blocks) {
+  for (const MembraneBlock& blk : el.blocks) {
     for (int e = blk.begin; e < blk.end; ++e) {
       Kinematics k;
-      kinematics(x, &el_.conn[3 * e], &el_.geo[MembraneTriangles::kGeo * e], k);
+      kinematics(x, &el.conn[3 * e], &el.geo[MembraneTriangles::kGeo * e], k);
       double S[3], w;
       const WrinkleState st = blk.wrinkling ? stress<true>(k, blk, S, w) : stress<false>(k, blk, S, w);
-      const double e11 = 0.5 * (k.C11 - 1.0), e22 = 0.5 * (k.C22 - 1.0), h12 = 0.5 * k.C12;
+      double e11, e22, g12;
+      membrane::greenStrain(k, e11, e22, g12);
+      const double h12 = 0.5 * g12;
       out.majorStrain[e] = 0.5 * (e11 + e22) + std::sqrt(0.25 * (e11 - e22) * (e11 - e22) + h12 * h12);
       out.state[e] = double(static_cast<int>(st));
       // Cauchy stress σ = F S Fᵀ / J (J = current/reference area; thickness change not modelled).

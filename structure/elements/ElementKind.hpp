@@ -1,0 +1,102 @@
+#pragma once
+// ElementKind: everything the solver needs to know about one kind of element (membrane triangle, cable, ...),
+// behind one small interface. A kind works on its own structure-of-arrays block in the Model
+// (model.membranes, model.cables) and keeps its per-element loops inside its own file, templated on
+// compile-time options: the solver makes one virtual call per element kind (per step for the forces), never
+// one per element.
+//
+// What a kind provides:
+//   forces       makeForces(): the Effect that adds the internal forces and bounds the stable step;
+//   mass         addLumpedMass() (physical) and scaleMass() (selective mass scaling);
+//   relaxation   addStiffnessBounds() (Gerschgorin row sums of the tangent stiffness) and, optionally,
+//                addStressBoundMass() (the stress-based fictitious mass);
+//   output       outputFields() and addFields() (the element-centred fields of the result files);
+//   diagnosis    mostStrained() and describe() (names an element in messages).
+// Kinds are registered by name in elementKinds() (ElementRegistry.cpp): the order there is the order of
+// every loop over kinds (mass sums, field lists), so results do not depend on anything else.
+
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "structure/effects/Effect.hpp"
+#include "structure/io/ResultsWriter.hpp"
+#include "structure/model/Model.hpp"
+
+namespace fsi::structure {
+
+/// Element damping, the same for every kind: stiffness-proportional Rayleigh β [s] and the linear bulk
+/// viscosity b1 (viscous stress b1 ρ c L_e times the strain rate, ρ and c the element's — scaled — density
+/// and wave speed, so that the element's highest mode has the damping ratio b1 with or without mass scaling).
+struct ElementDamping {
+  double beta = 0;
+  double bulkB1 = 0;
+  bool enabled() const { return beta > 0 || bulkB1 > 0; }
+};
+
+/// Result of selective mass scaling over one kind.
+struct ScaledMass {
+  int elements = 0;    ///< elements whose density was raised
+  double added = 0.0;  ///< added mass [kg]
+};
+
+/// The element with the largest strain measure of a kind, for instability messages.
+struct StrainedElement {
+  int element = -1;
+  double strain = 0;  ///< non-finite when the element's state is
+};
+
+/// Buffers an element kind fills for one output frame; kept between frames (no allocation once sized).
+struct ElementFieldBuffers {
+  std::vector<std::vector<double>> arrays;
+};
+
+class ElementKind {
+ public:
+  virtual ~ElementKind() = default;
+  /// Registry name ("membrane", "cable"); also the name of its force effect in logs.
+  virtual std::string name() const = 0;
+  virtual int count(const Model& model) const = 0;
+  /// "triangle 12 of mesh 'canopy'".
+  virtual std::string describe(const Model& model, int element) const = 0;
+
+  /// The force effect over the kind's elements (references the model: create it once the model is in place).
+  virtual std::unique_ptr<Effect> makeForces(const Model& model, const ElementDamping& damping) const = 0;
+
+  /// Adds the lumped physical mass of every element to `mass` (one per node).
+  virtual void addLumpedMass(const Model& model, std::vector<double>& mass) const = 0;
+  /// Smallest reference stable step L_e/c_e (no safety factor); +inf without elements.
+  virtual double referenceStableDt(const Model& model) const = 0;
+  /// Raises the density of every element whose reference step is below `need` just enough to reach it:
+  /// adds the mass to model.nodes.mass and updates the kind's wave speeds (not invMassDof).
+  virtual ScaledMass scaleMass(Model& model, double need) const = 0;
+
+  /// Adds, per dof, the row sums Σ_j |K_ij| and the diagonal K_ii of the element tangent stiffness
+  /// (material + geometric) at configuration x.
+  virtual void addStiffnessBounds(const Model& model, const double* x, std::vector<double>& dofRow,
+                                  std::vector<double>& dofDiag) const = 0;
+  /// The stress-based fictitious mass ("proposal 1"), if the kind defines one: adds (λ/2)·bound to m and
+  /// marks the nodes it covered; nodes no kind covers fall back to the Gerschgorin bound. Default: none.
+  virtual void addStressBoundMass(const Model& /*model*/, const double* /*x*/, double /*lambda*/,
+                                  std::vector<double>& /*m*/, std::vector<char>& /*covered*/) const {}
+
+  /// Names of the element fields this kind can write (the scene's output.fields entries).
+  virtual std::vector<std::string> outputFields() const { return {}; }
+  /// Appends views of the requested fields at configuration x; the data live in `buffers` until the next
+  /// call.
+  virtual void addFields(const Model& /*model*/, const double* /*x*/, const std::set<std::string>& /*wanted*/,
+                         ElementFieldBuffers& /*buffers*/, std::vector<FieldView>& /*views*/) const {}
+  /// The most strained element (or the first non-finite one); nullopt if the kind reports none.
+  virtual std::optional<StrainedElement> mostStrained(const Model& /*model*/, const double* /*x*/) const {
+    return std::nullopt;
+  }
+};
+
+/// Every registered element kind, in registration order.
+const std::vector<const ElementKind*>& elementKinds();
+/// The kind registered under `name`, or nullptr.
+const ElementKind* findElementKind(const std::string& name);
+
+}  // namespace fsi::structure

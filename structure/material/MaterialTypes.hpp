@@ -1,0 +1,43 @@
+#pragma once
+// The registry of material types: the `type:` values of the scene's `materials:` entries. Each type has its
+// name, its valid keys, a reader that parses and validates an entry (errors name file, line and key), and the
+// element kind whose elements it feeds; meshes refer to a material through that kind's mesh key (`material`
+// for membranes, `cable_material` for cables). The scene's materials block reads through readMaterials(), so
+// valid types and keys (and the "did you mean" of a misspelt one) come from here.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "structure/model/Materials.hpp"
+
+namespace fsi::structure {
+
+class YamlMap;
+
+/// The materials of a scene, by element kind.
+struct MaterialTable {
+  std::vector<MembraneMaterial> membrane;
+  std::vector<CableMaterial> cable;
+  /// element kind → material name → index in that kind's list
+  std::map<std::string, std::map<std::string, int>> index;
+};
+
+struct MaterialType {
+  std::string name;               ///< the `type:` value
+  std::string elementKind;        ///< the element kind it feeds (ElementKind::name())
+  std::vector<std::string> keys;  ///< valid keys besides `type`
+  /// Parses one entry, rejects keys not in `validKeys` (YamlMap::finish, with "did you mean"), validates the
+  /// values (errors name file, line and key) and appends it to the table; returns its index in the kind's
+  /// list.
+  int (*read)(const YamlMap& entry, const std::string& name, const std::vector<std::string>& validKeys,
+              MaterialTable& table);
+};
+
+/// Every registered material type, in registration order.
+const std::vector<MaterialType>& materialTypes();
+
+/// Reads a scene's `materials:` mapping through the registry.
+MaterialTable readMaterials(const YamlMap& materials);
+
+}  // namespace fsi::structure

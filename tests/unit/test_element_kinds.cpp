@@ -1,0 +1,111 @@
+// The element-kind and material-type registries: consistent names, and every kind's share of the model.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+
+#include "structure/elements/ElementKind.hpp"
+#include "structure/material/MaterialTypes.hpp"
+#include "structure/scene/Generators.hpp"
+#include "structure/scene/Scene.hpp"
+
+using namespace fsi::structure;
+
+TEST(ElementKinds, RegistryNamesAreUniqueAndFindable) {
+  std::set<std::string> names;
+  for (const ElementKind* k : elementKinds()) {
+    EXPECT_TRUE(names.insert(k->name()).second) << k->name();
+    EXPECT_EQ(findElementKind(k->name()), k);
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"membrane", "cable"}));
+  EXPECT_EQ(findElementKind("membrain"), nullptr);
+}
+
+TEST(ElementKinds, EveryMaterialTypeFeedsARegisteredKind) {
+  std::set<std::string> types;
+  for (const MaterialType& t : materialTypes()) {
+    EXPECT_TRUE(types.insert(t.name).second) << t.name;
+    EXPECT_NE(findElementKind(t.elementKind), nullptr) << t.name << " feeds '" << t.elementKind << "'";
+    EXPECT_NE(t.read, nullptr);
+  }
+}
+
+TEST(ElementKinds, OutputFieldsAreValidSceneFields) {
+  const auto& all = allOutputFields();
+  for (const ElementKind* k : elementKinds())
+    for (const std::string& f : k->outputFields())
+      EXPECT_NE(std::find(all.begin(), all.end(), f), all.end()) << k->name() << ": " << f;
+}
+
+// A mixed model: each kind counts its own elements, and the lumped masses they add sum to ρ t A of the sheet
+// plus ρ A L of the cable (the model's total mass, computed here from the inputs).
+TEST(ElementKinds, CountAndLumpedMassOfAMixedModel) {
+  RectangleParams rp;
+  rp.size = {2.0, 1.0};
+  rp.divisions = {4, 2};
+  MeshInput sheet;
+  sheet.mesh = rectangle(rp, "sheet");
+  sheet.membraneMaterial = 0;
+  CableChainParams cp;
+  cp.points = {{0, 0, 1}, {0, 0, 4}};
+  cp.divisions = {3};
+  MeshInput line;
+  line.mesh = cableChain(cp, "line");
+  line.cableMaterial = 0;
+  Model m = buildModel({sheet, line}, {MembraneMaterial{"f", 1e9, 0.3, 2e-3, 500, true}},
+                       {CableMaterial{"c", 1e9, 1e-4, 1500}});
+  EXPECT_EQ(findElementKind("membrane")->count(m), 16);
+  EXPECT_EQ(findElementKind("cable")->count(m), 3);
+  double total = 0;
+  for (double v : m.nodes.mass) total += v;
+  EXPECT_NEAR(total, 500 * 2e-3 * 2.0 + 1500 * 1e-4 * 3.0, 1e-12 * total);
+  std::vector<double> cableOnly(m.nodes.count, 0.0);
+  findElementKind("cable")->addLumpedMass(m, cableOnly);
+  double c = 0;
+  for (double v : cableOnly) c += v;
+  EXPECT_NEAR(c, 1500 * 1e-4 * 3.0, 1e-12 * c);
+  EXPECT_EQ(findElementKind("cable")->describe(m, 0).rfind("cable ", 0), 0u);
+  EXPECT_EQ(findElementKind("membrane")->describe(m, 0).rfind("triangle ", 0), 0u);
+}
+
+namespace {
+
+std::string materialError(const std::string& film) {
+  const std::string yaml = "materials:\n  film: " + film + R"(
+meshes:
+  sheet:
+    generator: {type: rectangle, size: [1, 1], divisions: [2, 2]}
+    material: film
+time: {end: 1.0e-3}
+)";
+  try {
+    loadSceneFromString(yaml, "m.yaml");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+}
+
+}  // namespace
+
+// The scene's materials block reads through the registry: its types and each type's keys are the valid ones,
+// with "did you mean" and located messages.
+TEST(MaterialTypes, SceneMaterialsComeFromTheRegistry) {
+  EXPECT_EQ(materialError("{type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}"),
+            "");
+  const std::string type = materialError("{type: membrn, young: 1.0e8}");
+  EXPECT_NE(type.find("m.yaml:2:"), std::string::npos) << type;
+  EXPECT_NE(type.find("materials.film.type"), std::string::npos) << type;
+  EXPECT_NE(type.find("did you mean 'membrane'"), std::string::npos) << type;
+  EXPECT_NE(type.find("cable"), std::string::npos) << type;  // lists the registered types
+  const std::string key = materialError(
+      "{type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000, wrinklng: false}");
+  EXPECT_NE(key.find("unknown key 'wrinklng'"), std::string::npos) << key;
+  EXPECT_NE(key.find("did you mean 'wrinkling'"), std::string::npos) << key;
+  const std::string cableKey =
+      materialError("{type: cable, young: 1.0e9, area: 1.0e-4, density: 1000, wrinkling: false}");
+  EXPECT_NE(cableKey.find("unknown key 'wrinkling'"), std::string::npos) << cableKey;  // a membrane key
+  const std::string value = materialError("{type: cable, young: 1.0e9, area: -1, density: 1000}");
+  EXPECT_NE(value.find("materials.film.area: must be > 0"), std::string::npos) << value;
+}

@@ -9,25 +9,22 @@
 #include <set>
 #include <stdexcept>
 
+#include "structure/io/AtomicFile.hpp"
+
 namespace fsi::structure {
 
 namespace {
 
-// Writes through a temporary file renamed into place at the end.
+// Writes `body(out)` through io/AtomicFile: a temporary file, synced and renamed into place.
 template <class Fn>
-void writeAtomically(const std::filesystem::path& file, Fn body) {
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  {
+void writeAtomically(const std::filesystem::path& file, const char* who, Fn body) {
+  replaceFileAtomically(file, who, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error(fmt::format("{}: cannot create the file", tmp.string()));
     body(out);
     out.flush();
     if (!out) throw std::runtime_error(fmt::format("{}: writing failed (disk full?)", tmp.string()));
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec)
-    throw std::runtime_error(fmt::format("{}: cannot rename into place: {}", file.string(), ec.message()));
+  });
 }
 
 // For every entity of one kind (count n, groups by name): the sorted list of groups of each entity.
@@ -87,7 +84,7 @@ void writeMsh(const MeshData& mesh, const std::filesystem::path& file) {
     add(1, 1, lineGroups, l, {mesh.lines[l][0], mesh.lines[l][1]}, e1);
   for (std::size_t p = 0; p < mesh.points.size(); ++p) add(0, 15, nodeGroups, p, {int(p)}, e0);
 
-  writeAtomically(file, [&](std::ofstream& out) {
+  writeAtomically(file, "MSH writer", [&](std::ofstream& out) {
     out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
     out << "$PhysicalNames\n" << physical.size() << "\n";
     for (const auto& [key, tag] : physical)
@@ -112,7 +109,7 @@ void writeStl(const MeshData& mesh, const std::vector<int>& triangles, const std
               const std::string& solid) {
   std::string name;
   for (char c : solid) name += (c == ' ' || c == '\n' || c == '\r' || c == '\t') ? '_' : c;
-  writeAtomically(file, [&](std::ofstream& out) {
+  writeAtomically(file, "STL writer", [&](std::ofstream& out) {
     out << "solid " << name << "\n";
     auto facet = [&](const std::array<int, 3>& t) {
       const auto& a = mesh.points[t[0]];

@@ -6,7 +6,7 @@
 //    share one elementary entity, so that reading the file back (readGmsh, or Gmsh) gives the same groups.
 //  - STL (ASCII) of a set of triangles with their outward normals: the surface snappyHexMesh cuts the fluid
 //    mesh around.
-// Both are written to a temporary file next to the target and renamed, so a failed write leaves no half file.
+// Both are written through io/AtomicFile (temporary file, fsync, rename): a failed write leaves no half file.
 
 #include <filesystem>
 #include <string>

@@ -6,6 +6,8 @@
 //                          or a structure scene's coupling interface)
 //   fsi plot RUN_DIR [--out DIR] [--color auto|stress|displacement]
 //                          PNG plots of a run (share/fsi/fsi_plot.py)
+//   fsi generate SCENE.yaml --out DIR [--set key.path=value ...]
+//                          writes the scene's meshes (MESH.msh with its sets, MESH.stl of the outer surface)
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -24,6 +26,7 @@
 
 #include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
+#include "structure/io/MeshFileWriters.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/Interrupt.hpp"
 #include "structure/run/Simulation.hpp"
@@ -204,6 +207,33 @@ int plotCommand(const fs::path& runDir, const fs::path& out, const std::string& 
   throw std::runtime_error(fmt::format("cannot run {}: {}", python, std::strerror(errno)));
 }
 
+// Every mesh of the scene as built (generators run, files read), before the model renumbers it: MESH.msh with
+// its groups as physical groups, and for meshes with triangles MESH.stl of the outer surface (the `skin` set
+// when the mesh has one, e.g. a parafoil; otherwise every triangle), ready for snappyHexMesh.
+int generateCommand(const fs::path& scenePath, const fs::path& outDir, const std::vector<std::string>& sets) {
+  const fsi::structure::Scene scene = fsi::structure::loadScene(scenePath, sets);
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec)
+    throw std::runtime_error(fmt::format("{}: cannot create the folder: {}", outDir.string(), ec.message()));
+  for (const auto& m : scene.model->meshes) {
+    const fsi::structure::MeshData& mesh = m.source;
+    const fs::path msh = outDir / (m.name + ".msh");
+    fsi::structure::writeMsh(mesh, msh);
+    fmt::print("{}  {} nodes, {} triangles, {} lines, {} sets\n", msh.string(), mesh.points.size(),
+               mesh.triangles.size(), mesh.lines.size(),
+               mesh.nodeGroups.size() + mesh.triangleGroups.size() + mesh.lineGroups.size());
+    if (mesh.triangles.empty()) continue;
+    const auto skin = mesh.triangleGroups.find("skin");
+    const std::vector<int> outer = skin == mesh.triangleGroups.end() ? std::vector<int>{} : skin->second;
+    const fs::path stl = outDir / (m.name + ".stl");
+    fsi::structure::writeStl(mesh, outer, stl, m.name);
+    fmt::print("{}  {} triangles ({})\n", stl.string(), outer.empty() ? mesh.triangles.size() : outer.size(),
+               outer.empty() ? "all" : "set 'skin'");
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -261,6 +291,14 @@ int main(int argc, char** argv) {
                    "displacement")
       ->check(CLI::IsMember({"auto", "stress", "displacement"}));
 
+  auto* generate = app.add_subcommand(
+      "generate", "write the meshes a scene builds (MESH.msh with its sets, MESH.stl of its outer surface)");
+  fs::path genScene, genOut;
+  std::vector<std::string> genSets;
+  generate->add_option("scene", genScene, "scene YAML file")->required();
+  generate->add_option("--out,-o", genOut, "output directory")->required();
+  generate->add_option("--set", genSets, "override a scene value: key.path=value (repeatable)");
+
   // Exit codes (README): 0 done, 1 any other failure, 2 bad input (arguments included), 3 unstable, 4 not
   // converged, 130 interrupted. CLI11's own codes (104-114) would be mistaken for run results.
   try {
@@ -290,6 +328,7 @@ int main(int argc, char** argv) {
                              mapVariant, mapLevel, mapSets);
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
+    if (*generate) return generateCommand(genScene, genOut, genSets);
   } catch (const fsi::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

@@ -117,6 +117,8 @@ std::vector<std::array<double, 3>> readPoints(const YamlMap& g, const std::strin
   return out;
 }
 
+GeneratorKind parafoilGenerator();  // structure/parafoil/ParafoilScene.cpp
+
 const std::vector<GeneratorKind>& generatorKinds() {
   // Register a new generator here: a row, or for a generator in a file of its own `myShapeGenerator(),` (with
   // `GeneratorKind myShapeGenerator();` declared above this function).
@@ -127,6 +129,7 @@ const std::vector<GeneratorKind>& generatorKinds() {
       {"cable_chain", kCableChainKeys, "cable lines along a polyline", cableChainFrom},
       {"strip", kStripKeys, "strip swept from a polyline", stripFrom},
       {"pillow", kPillowKeys, "two faces (rectangle or disc) joined at their rim", pillowFrom},
+      parafoilGenerator(),
   };
   return kinds;
 }

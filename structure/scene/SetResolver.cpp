@@ -261,6 +261,46 @@ std::vector<int> SetResolver::trianglesRaw(const YAML::Node& sel, const std::str
                    ": a triangle selector is a set or mesh name ('mesh' or 'mesh/group') or a list of them");
 }
 
+std::vector<int> SetResolver::lines(const YAML::Node& sel, const std::string& path) const {
+  std::vector<int> out = linesRaw(sel, path);
+  sortUnique(out);
+  if (out.empty()) throw InputError(locate(file_, sel, path) + ": selects no lines");
+  return out;
+}
+
+std::vector<int> SetResolver::linesRaw(const YAML::Node& sel, const std::string& path) const {
+  if (sel.IsSequence()) {
+    std::vector<int> out;
+    for (std::size_t i = 0; i < sel.size(); ++i)
+      append(out, linesRaw(sel[i], fmt::format("{}[{}]", path, i)), std::size_t(model_.cables.count));
+    return out;
+  }
+  if (!sel.IsScalar())
+    throw InputError(locate(file_, sel, path) +
+                     ": a line selector is a mesh name ('mesh' or 'mesh/group') or a list of them");
+  const std::string s = sel.Scalar();
+  const auto slash = s.find('/');
+  const MeshMap& mm = model_.meshes[meshIndex(s.substr(0, slash), sel, path)];
+  std::vector<int> out;
+  if (slash == std::string::npos) {
+    for (int e : mm.line)
+      if (e >= 0) out.push_back(e);
+    return out;
+  }
+  const std::string g = s.substr(slash + 1);
+  const auto it = mm.source.lineGroups.find(g);
+  if (it == mm.source.lineGroups.end()) {
+    const auto names = groupNames(mm.source.lineGroups);
+    const std::string near = closestMatch(g, names);
+    throw InputError(locate(file_, sel, path) +
+                     fmt::format(": mesh '{}' has no line group '{}'{}; its line groups: {}", mm.name, g,
+                                 near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                 names.empty() ? "(none)" : join(names)));
+  }
+  for (int i : it->second) out.push_back(mm.line[i]);
+  return out;
+}
+
 void defineSets(const YamlMap& top, const Model& model, SetResolver& sets) {
   if (!top.has("sets")) return;
   YamlMap s = top.map("sets");

@@ -28,6 +28,10 @@ class SetResolver {
   /// The sorted, distinct membrane elements `sel` selects; an empty selection is an error.
   std::vector<int> triangles(const YAML::Node& sel, const std::string& path) const;
 
+  /// The sorted, distinct cable elements `sel` selects: 'mesh' (all its lines), 'mesh/group' (a line group)
+  /// or a list of them; an empty selection is an error.
+  std::vector<int> lines(const YAML::Node& sel, const std::string& path) const;
+
  private:
   struct Named {
     YAML::Node sel;
@@ -45,6 +49,7 @@ class SetResolver {
   std::vector<int> trianglesByName(const std::string& s, const YAML::Node& at, const std::string& path) const;
   std::vector<int> nodesRaw(const YAML::Node& sel, const std::string& path) const;
   std::vector<int> trianglesRaw(const YAML::Node& sel, const std::string& path) const;
+  std::vector<int> linesRaw(const YAML::Node& sel, const std::string& path) const;
 
   const Model& model_;
   std::string file_;

@@ -294,7 +294,17 @@ bool YamlMap::has(const std::string& key) const {
 
 YAML::Node YamlMap::require(const std::string& key) const {
   const YAML::Node n = node_[key];
-  if (!n) fail(fmt::format("missing required key '{}'", key));
+  if (!n) {
+    // A key the map has that is close to the missing one is most likely it, misspelt: say so.
+    std::string near;
+    if (node_.IsMap())
+      for (const auto& kv : node_) {
+        const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : std::string();
+        if (!k.empty() && closestMatch(k, {key}) == key) near = k;
+      }
+    fail(fmt::format("missing required key '{}'{}", key,
+                     near.empty() ? "" : fmt::format(" (found '{}': did you mean '{}'?)", near, key)));
+  }
   used_.insert(key);
   return n;
 }

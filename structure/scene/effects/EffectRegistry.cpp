@@ -11,11 +11,15 @@ EffectKind bulkViscosityEffect();
 EffectKind gravityEffect();
 EffectKind pressureEffect();
 EffectKind nodalForcesEffect();
+EffectKind chordwisePressureEffect();  // PressureTableEffect.cpp
+EffectKind lineDragEffect();           // DragEffects.cpp
+EffectKind bodyDragEffect();           // DragEffects.cpp
 
 const std::vector<EffectKind>& effectKinds() {
-  static const std::vector<EffectKind> kinds{massDampingEffect(),   stiffnessDampingEffect(),
-                                             bulkViscosityEffect(), gravityEffect(),
-                                             pressureEffect(),      nodalForcesEffect()};
+  static const std::vector<EffectKind> kinds{
+      massDampingEffect(),       stiffnessDampingEffect(), bulkViscosityEffect(),
+      gravityEffect(),           pressureEffect(),         nodalForcesEffect(),
+      chordwisePressureEffect(), lineDragEffect(),         bodyDragEffect()};
   return kinds;
 }
 

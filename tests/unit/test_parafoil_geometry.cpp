@@ -1,0 +1,337 @@
+// The parafoil's section and design shape against independent references: the NACA definitions (thickness,
+// camber, the area integral of the thickness polynomial), Pappus' theorem for the volume enclosed by the
+// skins, watertightness and orientation of the outer surface, exact line geometry, and mirror symmetry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "structure/model/Error.hpp"
+#include "structure/parafoil/AirfoilSection.hpp"
+#include "structure/parafoil/ParafoilGeometry.hpp"
+#include "structure/scene/Scene.hpp"
+
+using fsi::InputError;
+using fsi::structure::MeshData;
+using namespace fsi::structure::parafoil;
+
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+// Area and centroid height of the section polygon sampled finely (independent of the generator's stations).
+std::pair<double, double> areaCentroid(const AirfoilSection& s, int n = 20000) {
+  std::vector<Point2> poly;
+  for (int i = n; i >= 0; --i) poly.push_back(s.upper(0.5 * (1 - std::cos(kPi * i / n))));
+  for (int i = 1; i < n; ++i) poly.push_back(s.lower(0.5 * (1 - std::cos(kPi * i / n))));
+  double a2 = 0, cy = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Point2& p = poly[i];
+    const Point2& q = poly[(i + 1) % poly.size()];
+    const double c = p[0] * q[1] - q[0] * p[1];
+    a2 += c;
+    cy += (p[1] + q[1]) * c;
+  }
+  return {std::abs(0.5 * a2), cy / (3.0 * a2)};
+}
+
+double enclosedVolume(const MeshData& m, const std::vector<int>& tris) {
+  double v = 0;
+  for (int t : tris) {
+    const auto& a = m.points[m.triangles[t][0]];
+    const auto& b = m.points[m.triangles[t][1]];
+    const auto& c = m.points[m.triangles[t][2]];
+    v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+          a[2] * (b[0] * c[1] - b[1] * c[0])) /
+         6.0;
+  }
+  return v;
+}
+
+ParafoilParams untwisted(int points, int divisions) {
+  ParafoilParams q;
+  q.span = 3.0;
+  q.rootChord = 1.0;
+  q.cells = 8;
+  q.arcRadius = 3.0;  // R/b = 1, as in Kalro & Tezduyar
+  q.section = AirfoilSection::naca("4415", "test");
+  q.chordwisePoints = points;
+  q.spanDivisions = divisions;
+  return q;
+}
+
+}  // namespace
+
+TEST(AirfoilSection, Naca4DigitThicknessAndCamberAsDefined) {
+  const AirfoilSection s = AirfoilSection::naca("NACA 2412", "test");
+  // Max camber m = 0.02 at p = 0.4: the mid-point of the two surface points of one station is on the mean
+  // line.
+  const Point2 u = s.upper(0.4), l = s.lower(0.4);
+  EXPECT_NEAR(0.5 * (u[0] + l[0]), 0.4, 1e-14);
+  EXPECT_NEAR(0.5 * (u[1] + l[1]), 0.02, 1e-14);
+  // Thickness ratio t = 0.12 (the 4-digit thickness is largest near 30 % chord, where 2 y_t = 1.0003 t).
+  EXPECT_NEAR(s.thickness(), 0.12, 0.12 * 1e-3);
+  EXPECT_NEAR(s.upper(0)[0], 0.0, 1e-15);
+  EXPECT_NEAR(s.upper(1)[1], s.lower(1)[1], 1e-15);  // closed trailing edge
+}
+
+TEST(AirfoilSection, SymmetricAreaEqualsTheThicknessIntegral) {
+  // ∫ 2 y_t dx over the chord = 10 t (0.2969·2/3 − 0.1260/2 − 0.3516/3 + 0.2843/4 − 0.1036/5).
+  const double t = 0.15;
+  const double exact = 10 * t * (0.2969 * 2.0 / 3.0 - 0.1260 / 2 - 0.3516 / 3 + 0.2843 / 4 - 0.1036 / 5);
+  const AirfoilSection s = AirfoilSection::naca("0015", "test");
+  EXPECT_NEAR(s.area(4000), exact, exact * 1e-5);
+  EXPECT_NEAR(s.scaledThickness(2.0).area(4000), 2 * exact, 2 * exact * 1e-5);
+}
+
+TEST(AirfoilSection, Naca5DigitMeanLinePeaksAtItsDesignPosition) {
+  // 230xx: design lift 0.3, maximum camber at 15 % chord, about 1.8 % high (the family's defining table).
+  const AirfoilSection s = AirfoilSection::naca("23012", "test");
+  double best = -1, at = 0;
+  for (int i = 1; i < 4000; ++i) {
+    const double xi = i / 4000.0;
+    const double yc = 0.5 * (s.upper(xi)[1] + s.lower(xi)[1]);
+    if (yc > best) best = yc, at = xi;
+  }
+  EXPECT_NEAR(at, 0.15, 2e-3);
+  EXPECT_NEAR(best, 0.0183, 5e-4);
+  // A reflexed mean line (Q = 1) turns up again before the trailing edge: its slope there is positive.
+  const AirfoilSection r = AirfoilSection::naca("23112", "test");
+  const double y1 = 0.5 * (r.upper(0.95)[1] + r.lower(0.95)[1]),
+               y2 = 0.5 * (r.upper(0.99)[1] + r.lower(0.99)[1]);
+  EXPECT_LT(std::abs(y2 - y1), std::abs(0.5 * (s.upper(0.95)[1] + s.lower(0.95)[1]) -
+                                        0.5 * (s.upper(0.99)[1] + s.lower(0.99)[1])));
+}
+
+TEST(AirfoilSection, XOnSurfaceInvertsTheOffset) {
+  const AirfoilSection s = AirfoilSection::naca("4415", "test");
+  for (double x : {0.1, 0.3, 0.6, 0.8}) {
+    EXPECT_NEAR(s.lower(s.xOnSurface(x, false))[0], x, 1e-12);
+    EXPECT_NEAR(s.upper(s.xOnSurface(x, true))[0], x, 1e-12);
+  }
+}
+
+TEST(AirfoilSection, SeligFileGivesTheSameSection) {
+  const AirfoilSection n = AirfoilSection::naca("0012", "test");
+  std::string text = "NACA 0012 written out\n";
+  const int k = 200;
+  for (int i = k; i >= 0; --i) {
+    const Point2 p = n.upper(0.5 * (1 - std::cos(kPi * i / k)));
+    text += std::to_string(p[0]) + " " + std::to_string(p[1]) + "\n";
+  }
+  for (int i = 1; i <= k; ++i) {
+    const Point2 p = n.lower(0.5 * (1 - std::cos(kPi * i / k)));
+    text += std::to_string(p[0]) + " " + std::to_string(p[1]) + "\r\n";
+  }
+  const AirfoilSection s = AirfoilSection::seligText(text, "n0012.dat");
+  EXPECT_NEAR(s.area(), n.area(), n.area() * 2e-3);
+  EXPECT_NEAR(s.thickness(), 0.12, 1e-3);
+  EXPECT_NEAR(s.upper(0.3)[1], n.upper(0.3)[1], 1e-3);
+}
+
+TEST(AirfoilSection, BadSectionFilesAreLocated) {
+  auto message = [](const std::string& text) {
+    try {
+      AirfoilSection::seligText(text, "wing.dat");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("s\n1 0\n0.5 0.05\n0 0\n0.5 -0.05\n0.6 x\n1 0\n").find("wing.dat:6"), std::string::npos);
+  // Not closed: the last point is far from the first.
+  EXPECT_NE(message("s\n1 0\n0.5 0.05\n0 0\n0.5 -0.05\n0.6 -0.04\n").find("not a closed curve"),
+            std::string::npos);
+  // The surfaces cross.
+  EXPECT_NE(message("s\n1 0\n0.5 -0.05\n0.2 0.03\n0 0\n0.2 -0.03\n0.5 0.05\n1 0\n").find("cross"),
+            std::string::npos);
+  // Lednicer's format (counts first).
+  EXPECT_NE(message("s\n3. 3.\n\n0 0\n0.5 0.05\n1 0\n\n0 0\n0.5 -0.05\n1 0\n").find("Lednicer"),
+            std::string::npos);
+  try {
+    AirfoilSection::naca("NACA 2x12", "scene.yaml:4");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.yaml:4"), std::string::npos);
+  }
+  EXPECT_THROW(AirfoilSection::naca("26012", "w"), InputError);  // position digit 6 does not exist
+}
+
+TEST(ParafoilGeometry, ClosedSkinIsWatertightAndOutward) {
+  const MeshData m = buildParafoil(untwisted(16, 2));
+  const auto& skin = m.triangleGroups.at("skin");
+  // Every directed edge of a closed, consistently oriented surface appears once, its reverse once.
+  std::map<std::pair<int, int>, int> directed;
+  for (int t : skin)
+    for (int e = 0; e < 3; ++e) ++directed[{m.triangles[t][e], m.triangles[t][(e + 1) % 3]}];
+  for (const auto& [edge, count] : directed) {
+    ASSERT_EQ(count, 1) << "edge " << edge.first << "-" << edge.second;
+    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u)
+        << "open edge " << edge.first << "-" << edge.second;
+  }
+  EXPECT_GT(enclosedVolume(m, skin), 0.0);  // outward
+}
+
+TEST(ParafoilGeometry, EnclosedVolumeConvergesToPappus) {
+  // Volume swept by the section along the arc: area × c² × the path of its centroid, b (1 + ȳ c / R).
+  ParafoilParams q = untwisted(12, 1);
+  const auto [area, ybar] = areaCentroid(q.section);
+  const double exact = area * q.rootChord * q.rootChord * q.span * (1.0 + ybar * q.rootChord / q.arcRadius);
+  const MeshData coarse = buildParafoil(q);
+  const double errCoarse = std::abs(enclosedVolume(coarse, coarse.triangleGroups.at("skin")) / exact - 1.0);
+  q.chordwisePoints = 24;
+  q.spanDivisions = 2;
+  const MeshData fine = buildParafoil(q);
+  const double errFine = std::abs(enclosedVolume(fine, fine.triangleGroups.at("skin")) / exact - 1.0);
+  EXPECT_LT(errFine, 0.01);
+  EXPECT_LT(errFine, errCoarse / 3.0);  // second order: halving both spacings quarters the error
+}
+
+TEST(ParafoilGeometry, LinesAndAttachmentsAsSpecified) {
+  ParafoilParams q = untwisted(24, 2);
+  q.riserLength = 0.5;
+  const MeshData m = buildParafoil(q);
+  const auto& c = m.points[m.nodeGroups.at("confluence")[0]];
+  const double L = std::hypot(c[0] - 0.25 * q.rootChord, c[1], c[2]);
+  EXPECT_NEAR(L, q.lineLength * q.span, 1e-12);
+  EXPECT_NEAR(std::atan2(-(c[0] - 0.25), -c[2]), q.riggingDeg * kPi / 180.0, 1e-12);
+  // Attachments: on the lower surface at the row's x/c (no taper, twist or incidence: x = (x/c)·c).
+  std::multiset<double> xs;
+  for (int a : m.nodeGroups.at("attachments")) xs.insert(std::round(m.points[a][0] * 1e9) / 1e9);
+  for (double row : q.rows) EXPECT_EQ(xs.count(std::round(row * 1e9) / 1e9), std::size_t(q.cells + 1));
+  // Each row: cascade 2 on 4 ribs per half + the centre rib = 2 + 2 + 1 main lines.
+  EXPECT_EQ(m.lineGroups.at("main_lines").size(), q.rows.size() * 5 * std::size_t(q.lineElements));
+  const auto& p = m.points[m.nodeGroups.at("payload")[0]];
+  EXPECT_NEAR(c[2] - p[2], 0.5, 1e-12);
+  // Line nodes of one segment are equally spaced on a straight line: total length of a chain = end distance.
+  double chainLength = 0;
+  for (int e : m.lineGroups.at("riser")) {
+    const auto& a = m.points[m.lines[e][0]];
+    const auto& b = m.points[m.lines[e][1]];
+    chainLength += std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+  }
+  EXPECT_NEAR(chainLength, 0.5, 1e-12);
+}
+
+TEST(ParafoilGeometry, MirrorSymmetric) {
+  ParafoilParams q = untwisted(20, 2);
+  q.twistDeg = 3;
+  q.tipChord = 0.7;
+  q.intakeOpen = true;
+  q.intakeFrom = 0.0;
+  q.intakeTo = 0.06;
+  const MeshData m = buildParafoil(q);
+  auto key = [](const std::array<double, 3>& p, double sign) {
+    return std::make_tuple(std::llround(p[0] * 1e9), std::llround(sign * p[1] * 1e9),
+                           std::llround(p[2] * 1e9));
+  };
+  std::map<std::tuple<long long, long long, long long>, int> at;
+  for (std::size_t i = 0; i < m.points.size(); ++i) at[key(m.points[i], 1)] = int(i);
+  std::vector<int> mirror(m.points.size());
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const auto it = at.find(key(m.points[i], -1));
+    ASSERT_NE(it, at.end()) << "node " << i << " has no mirror image";
+    mirror[i] = it->second;
+  }
+  std::set<std::set<int>> tris, lines;
+  for (const auto& t : m.triangles) tris.insert({t[0], t[1], t[2]});
+  for (const auto& l : m.lines) lines.insert({l[0], l[1]});
+  for (const auto& t : m.triangles) EXPECT_TRUE(tris.count({mirror[t[0]], mirror[t[1]], mirror[t[2]]}));
+  for (const auto& l : m.lines) EXPECT_TRUE(lines.count({mirror[l[0]], mirror[l[1]]}));
+  EXPECT_EQ(m.lineGroups.at("brakes_left").size(), m.lineGroups.at("brakes_right").size());
+  EXPECT_EQ(mirror[m.nodeGroups.at("toggle_left")[0]], m.nodeGroups.at("toggle_right")[0]);
+}
+
+TEST(ParafoilGeometry, EverySetIsNonEmpty) {
+  ParafoilParams q = untwisted(16, 2);
+  q.intakeOpen = true;
+  q.riserLength = 0.3;
+  const MeshData m = buildParafoil(q);
+  for (const auto& [name, v] : m.nodeGroups) EXPECT_FALSE(v.empty()) << name;
+  for (const auto& [name, v] : m.triangleGroups) EXPECT_FALSE(v.empty()) << name;
+  for (const auto& [name, v] : m.lineGroups) EXPECT_FALSE(v.empty()) << name;
+  for (const char* g : {"lines_A", "lines_B", "lines_C", "lines_D", "main_lines", "brakes", "riser"})
+    EXPECT_TRUE(m.lineGroups.count(g)) << g;
+  // An open intake removes the lower skin between its edges: the skin is no longer closed.
+  EXPECT_LT(m.triangleGroups.at("lower").size(), m.triangleGroups.at("upper").size());
+}
+
+TEST(ParafoilGeometry, ImpossibleDesignsNameTheParameter) {
+  auto message = [](auto change) {
+    ParafoilParams q = untwisted(16, 1);
+    change(q);
+    try {
+      buildParafoil(q);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([](ParafoilParams& q) { q.cells = 0; }).find("'cells'"), std::string::npos);
+  EXPECT_NE(message([](ParafoilParams& q) { q.lineLength = 0.01; }).find("'line_length'"), std::string::npos);
+  EXPECT_NE(message([](ParafoilParams& q) {
+              q.intakeOpen = true;
+              q.intakeFrom = 0.2;
+              q.intakeTo = 1.3;
+            }).find("'intake.to'"),
+            std::string::npos);
+  EXPECT_NE(message([](ParafoilParams& q) { q.arcRadius = 0.5; }).find("'arc_radius'"), std::string::npos);
+  EXPECT_NE(message([](ParafoilParams& q) { q.rows = {0.3, 0.1}; }).find("'rows[1]'"), std::string::npos);
+  EXPECT_NE(message([](ParafoilParams& q) {
+              q.cells = 7;
+              q.alternateRibs = true;
+            }).find("'ribs'"),
+            std::string::npos);
+  EXPECT_NE(message([](ParafoilParams& q) { q.chordwisePoints = 5; }).find("'chordwise_points'"),
+            std::string::npos);
+}
+
+namespace {
+const char* kParafoilScene = R"(materials:
+  fabric: {type: membrane, young: 1.3e9, poisson: 0.3, thickness: 7.6e-5, density: 530}
+  line: {type: cable, young: 4.3e10, area: 3.0e-6, density: 906}
+meshes:
+  wing:
+    generator: {type: parafoil, cells: 4, chordwise_points: 12, span_divisions: 1, section: NACA 2412,
+                intake: {from: 0.0, to: 0.05}, riser_length: 0.4, brake_points: 2}
+    material: fabric
+    cable_material: line
+constraints:
+  - {nodes: wing/confluence, fix: all}
+effects:
+  pressure: {triangles: wing/skin, value: 60}
+time: {end: 1.0e-3}
+)";
+}  // namespace
+
+TEST(ParafoilScene, GeneratorSetsAreSceneSets) {
+  const auto scene = fsi::structure::loadSceneFromString(kParafoilScene, "wing.yaml");
+  const auto& m = *scene.model;
+  EXPECT_GT(m.membranes.count, 0);
+  EXPECT_GT(m.cables.count, 0);
+  ASSERT_EQ(scene.constraints.fixedDofs.size(), 3u);  // the confluence point
+}
+
+TEST(ParafoilScene, MisspelledKeyAndBadValueAreLocated) {
+  std::string text = kParafoilScene;
+  auto withChange = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    t.replace(t.find(from), from.size(), to);
+    try {
+      fsi::structure::loadSceneFromString(t, "wing.yaml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string typo = withChange("cells: 4", "cels: 4");
+  EXPECT_NE(typo.find("wing.yaml:6"), std::string::npos) << typo;
+  EXPECT_NE(typo.find("cells"), std::string::npos) << typo;
+  const std::string section = withChange("NACA 2412", "NACA 2x12");
+  EXPECT_NE(section.find("wing.yaml:6"), std::string::npos) << section;
+  const std::string rows = withChange("riser_length: 0.4", "rows: [0.5, 0.2]");
+  EXPECT_NE(rows.find("'rows[1]'"), std::string::npos) << rows;
+  EXPECT_NE(rows.find("wing.yaml"), std::string::npos) << rows;
+}

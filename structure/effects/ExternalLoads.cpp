@@ -1,5 +1,7 @@
 #include "structure/effects/ExternalLoads.hpp"
 
+#include "structure/effects/TriangleLoad.hpp"
+
 namespace fsi::structure {
 
 FollowerPressure::FollowerPressure(std::string label, std::vector<int> triangleConn, double value,
@@ -14,18 +16,7 @@ void FollowerPressure::addForces(ForceContext& ctx) const {
   const int ne = int(conn_.size() / 3);
   for (int e = 0; e < ne; ++e) {
     const int* n = &conn_[3 * e];
-    const double* p1 = x + 3 * n[0];
-    const double* p2 = x + 3 * n[1];
-    const double* p3 = x + 3 * n[2];
-    const double a[3] = {p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
-    const double b[3] = {p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]};
-    const double c[3] = {p6 * (a[1] * b[2] - a[2] * b[1]), p6 * (a[2] * b[0] - a[0] * b[2]),
-                         p6 * (a[0] * b[1] - a[1] * b[0])};
-    for (int k = 0; k < 3; ++k) {
-      f[3 * n[0] + k] += c[k];
-      f[3 * n[1] + k] += c[k];
-      f[3 * n[2] + k] += c[k];
-    }
+    addTrianglePressure(x, n, p6, f);
   }
 }
 

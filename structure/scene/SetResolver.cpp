@@ -141,26 +141,35 @@ std::vector<int> SetResolver::trianglesByName(const std::string& s, const YAML::
   if (auto it = named_.find(s); it != named_.end())
     return namedSet(s, it->second, at, path, triangleMemo_,
                     [this](const YAML::Node& sel, const std::string& p) { return trianglesRaw(sel, p); });
+  return meshElements(s, at, path, "triangle", &MeshData::triangleGroups, &MeshMap::triangle);
+}
+
+// 'mesh' (every element of the mesh) or 'mesh/group' (one of its groups of that kind), as model elements.
+std::vector<int> SetResolver::meshElements(const std::string& s, const YAML::Node& at,
+                                           const std::string& path, const char* kind,
+                                           Groups MeshData::*groups,
+                                           std::vector<int> MeshMap::*toModel) const {
   const auto slash = s.find('/');
-  const int m = meshIndex(s.substr(0, slash), at, path);
-  const MeshMap& mm = model_.meshes[m];
+  const MeshMap& mm = model_.meshes[meshIndex(s.substr(0, slash), at, path)];
+  const std::vector<int>& map = mm.*toModel;
   std::vector<int> out;
   if (slash == std::string::npos) {
-    for (int e : mm.triangle)
+    for (int e : map)
       if (e >= 0) out.push_back(e);
     return out;
   }
   const std::string g = s.substr(slash + 1);
-  const auto it = mm.source.triangleGroups.find(g);
-  if (it == mm.source.triangleGroups.end()) {
-    const auto names = groupNames(mm.source.triangleGroups);
+  const Groups& all = mm.source.*groups;
+  const auto it = all.find(g);
+  if (it == all.end()) {
+    const auto names = groupNames(all);
     const std::string near = closestMatch(g, names);
     throw InputError(locate(file_, at, path) +
-                     fmt::format(": mesh '{}' has no triangle group '{}'{}; its triangle groups: {}", mm.name,
-                                 g, near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                                 join(names)));
+                     fmt::format(": mesh '{}' has no {} group '{}'{}; its {} groups: {}", mm.name, kind, g,
+                                 near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), kind,
+                                 names.empty() ? "(none)" : join(names)));
   }
-  for (int i : it->second) out.push_back(mm.triangle[i]);
+  for (int i : it->second) out.push_back(map[i]);
   return out;
 }
 
@@ -278,27 +287,7 @@ std::vector<int> SetResolver::linesRaw(const YAML::Node& sel, const std::string&
   if (!sel.IsScalar())
     throw InputError(locate(file_, sel, path) +
                      ": a line selector is a mesh name ('mesh' or 'mesh/group') or a list of them");
-  const std::string s = sel.Scalar();
-  const auto slash = s.find('/');
-  const MeshMap& mm = model_.meshes[meshIndex(s.substr(0, slash), sel, path)];
-  std::vector<int> out;
-  if (slash == std::string::npos) {
-    for (int e : mm.line)
-      if (e >= 0) out.push_back(e);
-    return out;
-  }
-  const std::string g = s.substr(slash + 1);
-  const auto it = mm.source.lineGroups.find(g);
-  if (it == mm.source.lineGroups.end()) {
-    const auto names = groupNames(mm.source.lineGroups);
-    const std::string near = closestMatch(g, names);
-    throw InputError(locate(file_, sel, path) +
-                     fmt::format(": mesh '{}' has no line group '{}'{}; its line groups: {}", mm.name, g,
-                                 near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                                 names.empty() ? "(none)" : join(names)));
-  }
-  for (int i : it->second) out.push_back(mm.line[i]);
-  return out;
+  return meshElements(sel.Scalar(), sel, path, "line", &MeshData::lineGroups, &MeshMap::line);
 }
 
 void defineSets(const YamlMap& top, const Model& model, SetResolver& sets) {

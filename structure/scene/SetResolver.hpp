@@ -50,6 +50,10 @@ class SetResolver {
   std::vector<int> nodesRaw(const YAML::Node& sel, const std::string& path) const;
   std::vector<int> trianglesRaw(const YAML::Node& sel, const std::string& path) const;
   std::vector<int> linesRaw(const YAML::Node& sel, const std::string& path) const;
+  using Groups = std::map<std::string, std::vector<int>>;
+  std::vector<int> meshElements(const std::string& s, const YAML::Node& at, const std::string& path,
+                                const char* kind, Groups MeshData::*groups,
+                                std::vector<int> MeshMap::*toModel) const;
 
   const Model& model_;
   std::string file_;

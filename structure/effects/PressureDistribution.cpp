@@ -1,9 +1,9 @@
 #include "structure/effects/PressureDistribution.hpp"
 
-#include "structure/effects/TriangleLoad.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "structure/effects/TriangleLoad.hpp"
 
 namespace fsi::structure {
 
@@ -13,9 +13,34 @@ PressureDistribution::PressureDistribution(std::string label, std::vector<int> t
   for (double& p : sixth_) p /= 6.0;
 }
 
+PressureDistribution PressureDistribution::dead(std::string label, std::vector<int> triangleConn,
+                                                std::vector<double> values, TimeFunction f,
+                                                const std::vector<double>& X) {
+  PressureDistribution d(std::move(label), std::move(triangleConn), std::move(values), std::move(f));
+  d.dead_.assign(3 * d.sixth_.size(), 0.0);
+  std::vector<double> scratch(X.size(), 0.0);
+  for (std::size_t e = 0; e < d.sixth_.size(); ++e) {
+    // The force each node of the triangle receives at the reference state (read off node 0's sum).
+    const int* n = &d.conn_[3 * e];
+    double before[3];
+    for (int k = 0; k < 3; ++k) before[k] = scratch[3 * n[0] + k];
+    addTrianglePressure(X.data(), n, d.sixth_[e], scratch.data());
+    for (int k = 0; k < 3; ++k) d.dead_[3 * e + k] = scratch[3 * n[0] + k] - before[k];
+  }
+  return d;
+}
+
 void PressureDistribution::addForces(ForceContext& ctx) const {
   const double s = ctx.loadFactor * fn_(ctx.time);
   if (s == 0.0) return;
+  if (!dead_.empty()) {
+    double* __restrict f = ctx.fext;
+    const int ne = int(sixth_.size());
+    for (int e = 0; e < ne; ++e)
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 3; ++k) f[3 * conn_[3 * e + a] + k] += s * dead_[3 * e + k];
+    return;
+  }
   const double* __restrict x = ctx.x;
   double* __restrict f = ctx.fext;
   const int ne = int(sixth_.size());

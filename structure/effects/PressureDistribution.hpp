@@ -17,12 +17,21 @@
 
 namespace fsi::structure {
 
+// Follower by default (as FollowerPressure); dead() makes a load fixed in space.
 class PressureDistribution final : public Effect {
  public:
   /// triangleConn: model node indices, 3 per triangle; values: one pressure per triangle [Pa] (positive
   /// along the triangle's normal).
   PressureDistribution(std::string label, std::vector<int> triangleConn, std::vector<double> values,
                        TimeFunction f);
+  /// The same as a DEAD load: the forces of the pressure on the reference area and normal (reference
+  /// coordinates X, 3 per node), fixed in direction and size while the structure moves. A load whose
+  /// direction is fixed in space is what makes a line-anchored canopy under a prescribed pressure field
+  /// statically well posed: a follower field turns with the canopy, so its moment about the anchor never
+  /// vanishes by rotating.
+  static PressureDistribution dead(std::string label, std::vector<int> triangleConn,
+                                   std::vector<double> values, TimeFunction f, const std::vector<double>& X);
+  bool follower() const { return dead_.empty(); }
   std::string name() const override { return "pressure_distribution:" + label_; }
   void addForces(ForceContext& ctx) const override;
 
@@ -30,6 +39,7 @@ class PressureDistribution final : public Effect {
   std::string label_;
   std::vector<int> conn_;
   std::vector<double> sixth_;  ///< p_e / 6 (p A n / 3 = p (d21 × d31) / 6)
+  std::vector<double> dead_;   ///< dead load: the force on each node of each triangle, 3 per triangle
   TimeFunction fn_;
 };
 

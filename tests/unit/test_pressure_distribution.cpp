@@ -67,3 +67,31 @@ TEST(PressureDistribution, TableIsPiecewiseLinearAndConstantOutside) {
   EXPECT_DOUBLE_EQ(t.at(0.55), -1.0);
   EXPECT_DOUBLE_EQ(t.at(2.0), 0.0);
 }
+
+TEST(PressureDistribution, DeadLoadKeepsItsDirectionWhenTheSurfaceTurns) {
+  // One triangle in the x-y plane (normal +z) under p = 60 Pa, then turned rigidly by 90° about x (normal
+  // −y): the follower force turns with it, the dead load keeps the reference force (0, 0, p A).
+  const std::vector<double> X{0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::vector<double> turned{0, 0, 0, 1, 0, 0, 0, 0, 1};
+  const std::vector<int> conn{0, 1, 2};
+  const PressureDistribution follower("t", conn, {60.0}, TimeFunction::constant());
+  const PressureDistribution dead =
+      PressureDistribution::dead("t", conn, {60.0}, TimeFunction::constant(), X);
+  auto total = [&](const PressureDistribution& e, const std::vector<double>& x) {
+    std::vector<double> f(9, 0.0), fint(9, 0.0);
+    ForceContext ctx;
+    ctx.x = x.data();
+    ctx.fint = fint.data();
+    ctx.fext = f.data();
+    e.addForces(ctx);
+    return std::array<double, 3>{f[0] + f[3] + f[6], f[1] + f[4] + f[7], f[2] + f[5] + f[8]};
+  };
+  const double pA = 60.0 * 0.5;
+  EXPECT_NEAR(total(follower, X)[2], pA, 1e-12);
+  EXPECT_NEAR(total(dead, X)[2], pA, 1e-12);
+  EXPECT_NEAR(total(follower, turned)[1], -pA, 1e-12);  // normal (1,0,0)×(0,0,1) = (0,−1,0)
+  EXPECT_NEAR(total(dead, turned)[2], pA, 1e-12);
+  EXPECT_NEAR(total(dead, turned)[1], 0.0, 1e-12);
+  EXPECT_TRUE(follower.follower());
+  EXPECT_FALSE(dead.follower());
+}

@@ -13,8 +13,8 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"triangles", "dynamic_pressure", "cp", "leading_edge", "axis",
-                                     "chord",     "function"};
+const std::vector<std::string> kKeys{"triangles", "dynamic_pressure", "cp",      "leading_edge", "axis",
+                                     "chord",     "function",         "follower"};
 
 void build(const YamlMap& e, EffectContext& ctx) {
   const auto tris = ctx.sets.triangles(e.required("triangles"), e.childPath("triangles"));
@@ -40,6 +40,7 @@ void build(const YamlMap& e, EffectContext& ctx) {
   const double chord = e.number("chord");
   if (!(chord > 0)) e.failAt("chord", fmt::format("is {}; valid: > 0 [m]", chord));
   const TimeFunction fn = readTimeFunction(e, "function");
+  const bool follower = e.boolean("follower", true);
   e.finish(kKeys);
   std::vector<int> conn;
   for (int t : tris)
@@ -47,7 +48,12 @@ void build(const YamlMap& e, EffectContext& ctx) {
   // −q·Cp along the normal: the flow's pressure acts from the side the normal points to.
   auto values = chordwisePressure(ctx.model.nodes.X, conn, table, -q, le, axis, chord);
   const std::string label = e.node()["triangles"].IsScalar() ? e.node()["triangles"].Scalar() : e.path();
-  ctx.loads.push_back(std::make_unique<PressureDistribution>(label, std::move(conn), std::move(values), fn));
+  if (follower)
+    ctx.loads.push_back(
+        std::make_unique<PressureDistribution>(label, std::move(conn), std::move(values), fn));
+  else
+    ctx.loads.push_back(std::make_unique<PressureDistribution>(
+        PressureDistribution::dead(label, std::move(conn), std::move(values), fn, ctx.model.nodes.X)));
 }
 
 }  // namespace

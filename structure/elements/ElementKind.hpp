@@ -6,7 +6,8 @@
 // one per element.
 //
 // What a kind provides:
-//   forces       makeForces(): the Effect that adds the internal forces and bounds the stable step;
+//   forces       makeForces(): the Effect that adds the internal forces and bounds the stable step (none for
+//                a kind without internal forces);
 //   mass         addLumpedMass() (physical) and scaleMass() (selective mass scaling);
 //   relaxation   addStiffnessBounds() (Gerschgorin row sums of the tangent stiffness) and, optionally,
 //                addStressBoundMass() (the stress-based fictitious mass);
@@ -62,7 +63,8 @@ class ElementKind {
   /// "triangle 12 of mesh 'canopy'".
   virtual std::string describe(const Model& model, int element) const = 0;
 
-  /// The force effect over the kind's elements (references the model: create it once the model is in place).
+  /// The force effect over the kind's elements (references the model: create it once the model is in place);
+  /// nullptr for a kind without internal forces (a point mass).
   virtual std::unique_ptr<Effect> makeForces(const Model& model, const ElementDamping& damping) const = 0;
 
   /// Adds the lumped physical mass of every element to `mass` (one per node).

@@ -4,13 +4,15 @@
 #include "structure/elements/CableElement.hpp"
 #include "structure/elements/ElementKind.hpp"
 #include "structure/elements/MembraneElement.hpp"
+#include "structure/elements/PointMassElement.hpp"
 
 namespace fsi::structure {
 
 const std::vector<const ElementKind*>& elementKinds() {
   static const MembraneKind membrane;
   static const CableKind cable;
-  static const std::vector<const ElementKind*> kinds{&membrane, &cable};
+  static const PointMassKind pointMass;
+  static const std::vector<const ElementKind*> kinds{&membrane, &cable, &pointMass};
   return kinds;
 }
 

@@ -49,6 +49,18 @@ int readCable(const YamlMap& m, const std::string& name, const std::vector<std::
   return int(table.cable.size()) - 1;
 }
 
+int readPointMass(const YamlMap& m, const std::string& name, const std::vector<std::string>& validKeys,
+                  MaterialTable& table) {
+  PointMassMaterial pm;
+  pm.name = name;
+  pm.mass = m.number("mass");
+  m.finish(validKeys);
+  // Normal, not just > 0: a subnormal mass would make 1/m overflow to inf in the step loop.
+  if (!(pm.mass > 0) || !std::isnormal(pm.mass)) m.failAt("mass", "must be a finite number > 0 [kg]");
+  table.pointMass.push_back(pm);
+  return int(table.pointMass.size()) - 1;
+}
+
 }  // namespace
 
 const std::vector<MaterialType>& materialTypes() {
@@ -56,6 +68,7 @@ const std::vector<MaterialType>& materialTypes() {
   static const std::vector<MaterialType> types{
       {"membrane", "membrane", {"young", "poisson", "thickness", "density", "wrinkling"}, readMembrane},
       {"cable", "cable", {"young", "area", "density"}, readCable},
+      {"point_mass", "point_mass", {"mass"}, readPointMass},
   };
   return types;
 }

@@ -2,8 +2,9 @@
 // The registry of material types: the `type:` values of the scene's `materials:` entries. Each type has its
 // name, its valid keys, a reader that parses and validates an entry (errors name file, line and key), and the
 // element kind whose elements it feeds; meshes refer to a material through that kind's mesh key (`material`
-// for membranes, `cable_material` for cables). The scene's materials block reads through readMaterials(), so
-// valid types and keys (and the "did you mean" of a misspelt one) come from here.
+// for membranes, `cable_material` for cables, `point_masses: {NODE_GROUP: MATERIAL}` for point masses). The
+// scene's materials block reads through readMaterials(), so valid types and keys (and the "did you mean" of a
+// misspelt one) come from here.
 
 #include <map>
 #include <string>
@@ -19,6 +20,7 @@ class YamlMap;
 struct MaterialTable {
   std::vector<MembraneMaterial> membrane;
   std::vector<CableMaterial> cable;
+  std::vector<PointMassMaterial> pointMass;
   /// element kind → material name → index in that kind's list
   std::map<std::string, std::map<std::string, int>> index;
 };

@@ -23,4 +23,10 @@ struct CableMaterial {
   double density = 0;  ///< mass density [kg/m³]
 };
 
+/// A lumped point mass (a payload), carried by the nodes of a mesh's node group (`point_masses:`).
+struct PointMassMaterial {
+  std::string name;
+  double mass = 0;  ///< mass per node [kg]
+};
+
 }  // namespace fsi::structure

@@ -76,11 +76,16 @@ std::vector<int> mortonOrder(const std::vector<std::array<double, 3>>& pts) {
 }  // namespace
 
 Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> membraneMaterials,
-                 std::vector<CableMaterial> cableMaterials) {
+                 std::vector<CableMaterial> cableMaterials,
+                 std::vector<PointMassMaterial> pointMassMaterials) {
   checkMaterials(membraneMaterials, cableMaterials);
+  for (const auto& m : pointMassMaterials)
+    if (!(m.mass > 0) || !std::isfinite(m.mass))
+      throw InputError(fmt::format("material '{}': mass must be finite and > 0", m.name));
   Model model;
   model.membraneMaterials = std::move(membraneMaterials);
   model.cableMaterials = std::move(cableMaterials);
+  model.pointMassMaterials = std::move(pointMassMaterials);
 
   // 1. Concatenate the points of all meshes and renumber along a Morton curve.
   std::vector<std::array<double, 3>> pts;
@@ -266,7 +271,27 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     C.blocks.back().end = e + 1;
   }
 
-  // 4. Lumped masses, each element kind adding its own.
+  // 4. Point masses, in mesh order.
+  PointMasses& P = model.pointMasses;
+  for (std::size_t m = 0; m < inputs.size(); ++m) {
+    const MeshData& md = inputs[m].mesh;
+    long number = 0;
+    for (const auto& [local, material] : inputs[m].pointMasses) {
+      ++number;
+      if (local < 0 || local >= int(md.points.size()))
+        throw InputError(fmt::format("mesh '{}': point mass {} refers to node index {} out of range", md.name,
+                                     number, local));
+      if (material < 0 || material >= int(model.pointMassMaterials.size()))
+        throw InputError(fmt::format("mesh '{}': point mass {} has no point_mass material", md.name, number));
+      P.node.push_back(model.meshes[m].node[local]);
+      P.mass.push_back(model.pointMassMaterials[material].mass);
+      P.tag.push_back(number);
+      P.mesh.push_back(int(m));
+    }
+  }
+  P.count = int(P.node.size());
+
+  // 5. Lumped masses, each element kind adding its own.
   for (const ElementKind* kind : elementKinds()) kind->addLumpedMass(model, N.mass);
   for (int i = 0; i < N.count; ++i)
     if (!(N.mass[i] > 0))

@@ -70,6 +70,15 @@ struct Cables {
   std::vector<int> mesh;
 };
 
+/// Point masses: a lumped mass on one node each, no internal force, no stiffness.
+struct PointMasses {
+  int count = 0;
+  std::vector<int> node;     ///< model node carrying the mass
+  std::vector<double> mass;  ///< [kg]
+  std::vector<long> tag;     ///< 1-based number of the point mass within its mesh
+  std::vector<int> mesh;
+};
+
 /// Where the entities of one input mesh went after renumbering.
 struct MeshMap {
   std::string name;
@@ -83,8 +92,10 @@ struct Model {
   Nodes nodes;
   MembraneTriangles membranes;
   Cables cables;
+  PointMasses pointMasses;
   std::vector<MembraneMaterial> membraneMaterials;
   std::vector<CableMaterial> cableMaterials;
+  std::vector<PointMassMaterial> pointMassMaterials;
   std::vector<MeshMap> meshes;
 
   /// Human-readable name of a node / element for messages: "node 17 of mesh 'canopy'".
@@ -98,13 +109,16 @@ struct MeshInput {
   MeshData mesh;
   int membraneMaterial = -1;
   int cableMaterial = -1;
+  /// Point masses: (mesh-local node index, index into the point-mass materials), one per carrying node.
+  std::vector<std::array<int, 2>> pointMasses;
 };
 
 /// Builds a Model: merges meshes, renumbers, precomputes reference geometry and lumped masses, and rejects
 /// degenerate input (zero-area triangles, zero-length cables, repeated nodes in an element, massless nodes)
 /// with an InputError naming the element or node.
 Model buildModel(std::vector<MeshInput> meshes, std::vector<MembraneMaterial> membraneMaterials,
-                 std::vector<CableMaterial> cableMaterials);
+                 std::vector<CableMaterial> cableMaterials,
+                 std::vector<PointMassMaterial> pointMassMaterials = {});
 
 /// Membrane dilatational wave speed c_d = sqrt(Y / (ρ (1 − ν²))).
 double membraneWaveSpeed(const MembraneMaterial& m);

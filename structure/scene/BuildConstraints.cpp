@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "structure/scene/ReadTimeFunction.hpp"
@@ -57,12 +58,29 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
       } else if (c.has("prescribe")) {
         const auto nodes = sets.nodes(c.required("nodes"), c.childPath("nodes"));
         YamlMap p = c.map("prescribe");
-        const std::string componentName = p.choice("component", {"x", "y", "z"});
-        const int comp = componentName == "x" ? 0 : componentName == "y" ? 1 : 2;
         const double amp = p.number("amplitude");
         const TimeFunction fn = readTimeFunction(p, "function");
-        p.finish({"component", "amplitude", "function"});
-        for (int n : nodes) constraints.prescribed.push_back({n, comp, amp, fn});
+        // A direction d prescribes the whole displacement a·f(t)·d/|d|: one component motion per axis (those
+        // with d_k = 0 are held), so the node follows the line exactly and the integrators' per-component
+        // handling (zero inverse mass, impulse and work accounting) carries over unchanged.
+        const bool byDirection = p.has("direction"), byComponent = p.has("component");
+        if (byDirection && byComponent) p.fail("give either 'component' or 'direction', not both");
+        std::array<double, 3> along{0, 0, 0};
+        if (byDirection) {
+          along = p.vec3("direction");
+          const double len = std::sqrt(along[0] * along[0] + along[1] * along[1] + along[2] * along[2]);
+          if (!(len > 0) || !std::isfinite(len)) p.failAt("direction", "must be a finite, non-zero vector");
+          for (double& d : along) d /= len;
+        } else if (byComponent) {
+          const std::string componentName = p.choice("component", {"x", "y", "z"});
+          along[componentName == "x" ? 0 : componentName == "y" ? 1 : 2] = 1.0;
+        }
+        p.finish({"component", "direction", "amplitude", "function"});  // a misspelt key first
+        if (!byDirection && !byComponent)
+          p.fail("give either 'component: x|y|z' or 'direction: [dx, dy, dz]'");
+        for (int n : nodes)
+          for (int k = 0; k < 3; ++k)
+            if (byDirection || along[k] != 0) constraints.prescribed.push_back({n, k, amp * along[k], fn});
         c.finish({"nodes", "prescribe"});
       } else {
         c.fail("a constraint needs one of: fix (with nodes), symmetry, prescribe (with nodes)");

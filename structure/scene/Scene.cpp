@@ -61,10 +61,11 @@ SceneSpec readSceneSpec(const YamlMap& top, const std::string& fileName, const s
 void addElementForces(Scene& scene, const ElementDamping& damping) {
   const Model& model = *scene.model;
   for (const ElementKind* kind : elementKinds())
-    if (kind->count(model) > 0) {
-      scene.effects.push_back(kind->makeForces(model, damping));
-      scene.enabledEffects.insert(scene.enabledEffects.begin(), kind->name());
-    }
+    if (kind->count(model) > 0)
+      if (std::unique_ptr<Effect> forces = kind->makeForces(model, damping)) {
+        scene.effects.push_back(std::move(forces));
+        scene.enabledEffects.insert(scene.enabledEffects.begin(), kind->name());
+      }
 }
 
 // ---------------------------------------------------------------- builders: spec -> run state

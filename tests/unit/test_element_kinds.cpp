@@ -18,7 +18,7 @@ TEST(ElementKinds, RegistryNamesAreUniqueAndFindable) {
     EXPECT_TRUE(names.insert(k->name()).second) << k->name();
     EXPECT_EQ(findElementKind(k->name()), k);
   }
-  EXPECT_EQ(names, (std::set<std::string>{"membrane", "cable"}));
+  EXPECT_EQ(names, (std::set<std::string>{"membrane", "cable", "point_mass"}));
   EXPECT_EQ(findElementKind("membrain"), nullptr);
 }
 

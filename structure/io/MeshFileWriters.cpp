@@ -67,7 +67,7 @@ void writeMsh(const MeshData& mesh, const std::filesystem::path& file) {
   };
   std::vector<Record> first, copies;  // every element once first (keeps its tag order), then the repeats
   auto add = [&](int dim, int type, const std::vector<std::vector<std::string>>& groups, std::size_t i,
-                 std::vector<int> nodes, std::map<std::vector<std::string>, int>& entities) {
+                 const std::vector<int>& nodes, std::map<std::vector<std::string>, int>& entities) {
     const auto& gs = groups[i];
     const int entity = entities.emplace(gs, int(entities.size()) + 1).first->second;
     if (gs.empty()) {

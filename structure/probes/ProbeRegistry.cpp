@@ -13,10 +13,14 @@ ProbeKind positionProbe();
 ProbeKind reactionProbe();
 ProbeKind volumeProbe();
 ProbeKind stressProbe();
+ProbeKind lineTensionProbe();     // LineTensionProbe.cpp
+ProbeKind reactionMomentProbe();  // ReactionMomentProbe.cpp
+ProbeKind pitchAngleProbe();      // PitchAngleProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {
-  static const std::vector<ProbeKind> kinds{displacementProbe(), positionProbe(), reactionProbe(),
-                                            volumeProbe(), stressProbe()};
+  static const std::vector<ProbeKind> kinds{displacementProbe(),   positionProbe(),  reactionProbe(),
+                                            volumeProbe(),         stressProbe(),    lineTensionProbe(),
+                                            reactionMomentProbe(), pitchAngleProbe()};
   return kinds;
 }
 

@@ -31,6 +31,8 @@ struct ProbeSpec {
   ProbeReduce reduce = ProbeReduce::Value;
   std::vector<int> nodes;      ///< model node indices
   std::vector<int> triangles;  ///< model membrane element indices
+  std::vector<int> lines;      ///< model cable element indices
+  std::vector<int> nodesTo;    ///< a second node set (pitch_angle: the trailing edge)
   ProbeComponent component = ProbeComponent::X;
   std::array<double, 3> center{0, 0, 0};
   StressQuantity quantity = StressQuantity::MaxPrincipal;

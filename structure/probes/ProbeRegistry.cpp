@@ -16,11 +16,12 @@ ProbeKind stressProbe();
 ProbeKind lineTensionProbe();     // LineTensionProbe.cpp
 ProbeKind reactionMomentProbe();  // ReactionMomentProbe.cpp
 ProbeKind pitchAngleProbe();      // PitchAngleProbe.cpp
+ProbeKind appliedLoadProbe();     // AppliedLoadProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {
-  static const std::vector<ProbeKind> kinds{displacementProbe(),   positionProbe(),  reactionProbe(),
-                                            volumeProbe(),         stressProbe(),    lineTensionProbe(),
-                                            reactionMomentProbe(), pitchAngleProbe()};
+  static const std::vector<ProbeKind> kinds{displacementProbe(),   positionProbe(),   reactionProbe(),
+                                            volumeProbe(),         stressProbe(),     lineTensionProbe(),
+                                            reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe()};
   return kinds;
 }
 

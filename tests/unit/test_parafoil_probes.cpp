@@ -26,6 +26,8 @@ probes:
   t_sum: {type: line_tension, lines: l/all, reduce: sum}
   m_y: {type: reaction_moment, nodes: l/end, about: [0, 0, 0], component: y}
   m_y_shifted: {type: reaction_moment, nodes: l/end, about: [1, 0, 0], component: y}
+  load_z: {type: applied_load, nodes: l, component: z}
+  reaction_z: {type: reaction, nodes: l, component: z}
 time: {end: 1.0e-3}
 )";
 
@@ -49,6 +51,9 @@ TEST(ParafoilProbes, ReactionMomentIsRCrossTheReaction) {
   const auto p = evaluateProbes(scene);
   EXPECT_NEAR(p.at("m_y"), 10.0, 1e-12);
   EXPECT_NEAR(p.at("m_y_shifted"), 0.0, 1e-12);
+  // Global equilibrium at rest: the reactions and the applied load cancel.
+  EXPECT_NEAR(p.at("load_z"), 10.0, 1e-12);
+  EXPECT_NEAR(p.at("reaction_z") + p.at("load_z"), 0.0, 1e-12);
 }
 
 TEST(ParafoilProbes, PitchAngleOfATurnedChord) {

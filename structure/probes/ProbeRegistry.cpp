@@ -17,11 +17,12 @@ ProbeKind lineTensionProbe();     // LineTensionProbe.cpp
 ProbeKind reactionMomentProbe();  // ReactionMomentProbe.cpp
 ProbeKind pitchAngleProbe();      // PitchAngleProbe.cpp
 ProbeKind appliedLoadProbe();     // AppliedLoadProbe.cpp
+ProbeKind equilibriumProbe();     // EquilibriumProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {
-  static const std::vector<ProbeKind> kinds{displacementProbe(),   positionProbe(),   reactionProbe(),
-                                            volumeProbe(),         stressProbe(),     lineTensionProbe(),
-                                            reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe()};
+  static const std::vector<ProbeKind> kinds{
+      displacementProbe(), positionProbe(),       reactionProbe(),   volumeProbe(),      stressProbe(),
+      lineTensionProbe(),  reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe(), equilibriumProbe()};
   return kinds;
 }
 

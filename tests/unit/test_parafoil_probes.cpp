@@ -28,6 +28,8 @@ probes:
   m_y_shifted: {type: reaction_moment, nodes: l/end, about: [1, 0, 0], component: y}
   load_z: {type: applied_load, nodes: l, component: z}
   reaction_z: {type: reaction, nodes: l, component: z}
+  balance: {type: equilibrium_error, supports: l/end}
+  unbalanced: {type: equilibrium_error, supports: l/start}
 time: {end: 1.0e-3}
 )";
 
@@ -54,6 +56,9 @@ TEST(ParafoilProbes, ReactionMomentIsRCrossTheReaction) {
   // Global equilibrium at rest: the reactions and the applied load cancel.
   EXPECT_NEAR(p.at("load_z"), 10.0, 1e-12);
   EXPECT_NEAR(p.at("reaction_z") + p.at("load_z"), 0.0, 1e-12);
+  EXPECT_NEAR(p.at("balance"), 0.0, 1e-14);
+  // The free end carries no reaction: the whole load is out of balance.
+  EXPECT_NEAR(p.at("unbalanced"), 1.0, 1e-14);
 }
 
 TEST(ParafoilProbes, PitchAngleOfATurnedChord) {

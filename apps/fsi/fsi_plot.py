@@ -59,7 +59,9 @@ def load_modules():
                          "figure.dpi": 110, "savefig.dpi": 110})
 
 
-PROBE_UNITS = {"displacement": "m", "position": "m", "reaction": "N", "volume": "m³", "stress": "Pa"}
+PROBE_UNITS = {"displacement": "m", "position": "m", "reaction": "N", "volume": "m³", "stress": "Pa",
+               "line_tension": "N", "applied_load": "N", "reaction_moment": "N m", "pitch_angle": "deg",
+               "equilibrium_error": "-"}
 COUPLING_FIXED = ["time", "iterations", "converged", "residual", "Fx_fluid", "Fy_fluid", "Fz_fluid",
                   "Fx_structure", "Fy_structure", "Fz_structure"]
 

@@ -16,7 +16,7 @@ ProbeKind stressProbe();
 ProbeKind lineTensionProbe();     // LineTensionProbe.cpp
 ProbeKind reactionMomentProbe();  // ReactionMomentProbe.cpp
 ProbeKind pitchAngleProbe();      // PitchAngleProbe.cpp
-ProbeKind appliedLoadProbe();     // AppliedLoadProbe.cpp
+ProbeKind appliedLoadProbe();     // ReactionProbe.cpp
 ProbeKind equilibriumProbe();     // EquilibriumProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {

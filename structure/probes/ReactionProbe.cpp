@@ -1,4 +1,7 @@
-// reaction: a component of the summed reaction force (internal minus external force) on a set of nodes.
+// reaction and applied_load: a component of the summed reaction force (internal minus external force, what
+// the supports exert) or of the summed external force (pressure, drag, gravity, nodal loads) on a set of
+// nodes. Together they check global equilibrium: at a static state the reactions of all supports plus the
+// applied load on all nodes vanish (equilibrium_error does it in one number).
 #include "structure/probes/ProbeKinds.hpp"
 
 namespace fsi::structure {
@@ -14,18 +17,26 @@ void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
   p.finish(kKeys);
 }
 
+// Σ over the nodes of f_int − f_ext (the reaction) or of f_ext (the applied load), as the probe's component.
+template <bool Reaction>
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
   const Nodes& N = state.scene().model->nodes;
   double r[3] = {0, 0, 0};
   for (int n : p.nodes)
-    for (int k = 0; k < 3; ++k) r[k] += N.fint[3 * n + k] - N.fext[3 * n + k];
+    for (int k = 0; k < 3; ++k) r[k] += Reaction ? N.fint[3 * n + k] - N.fext[3 * n + k] : N.fext[3 * n + k];
   vals.push_back(vectorComponent(r, p.component));
 }
 
 }  // namespace
 
 ProbeKind reactionProbe() {
-  return {"reaction", kKeys, "a component of the reaction force summed over a set of nodes", parse, evaluate};
+  return {"reaction", kKeys, "a component of the reaction force summed over a set of nodes", parse,
+          evaluate<true>};
+}
+
+ProbeKind appliedLoadProbe() {
+  return {"applied_load", kKeys, "a component of the external (applied) force summed over a set of nodes",
+          parse, evaluate<false>};
 }
 
 }  // namespace fsi::structure

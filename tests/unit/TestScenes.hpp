@@ -1,8 +1,13 @@
 #pragma once
 // Scene text shared by several tests: a 1 m square film (8x8 cross-pattern squares) clamped on its edges.
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
+
+#include "structure/model/Error.hpp"
+#include "structure/scene/Scene.hpp"
 
 namespace fsi::test {
 
@@ -11,6 +16,23 @@ inline std::filesystem::path outDir(const std::string& name) {
   const std::filesystem::path d = std::filesystem::path(FSI_BINARY_DIR) / "test-output" / name;
   std::filesystem::remove_all(d);
   return d;
+}
+
+/// The message of the InputError loading `yaml` (named `name` in messages) throws; empty if it loads.
+inline std::string sceneError(const std::string& yaml, const std::string& name) {
+  try {
+    fsi::structure::loadSceneFromString(yaml, name);
+  } catch (const fsi::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// `s` with its first `from` replaced by `to` (a test failure if `from` is not there).
+inline std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  return p == std::string::npos ? s : s.replace(p, from.size(), to);
 }
 
 inline std::string drumScene(const std::string& extra) {

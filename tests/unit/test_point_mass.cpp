@@ -39,19 +39,10 @@ solver: {type: dynamic_relaxation, tolerance: 1.0e-10}
 )";
 
 std::string errorOf(const std::string& yaml) {
-  try {
-    loadSceneFromString(yaml, "payload.yaml");
-  } catch (const fsi::InputError& e) {
-    return e.what();
-  }
-  return "";
+  return fsi::test::sceneError(yaml, "payload.yaml");
 }
 
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-  const auto p = s.find(from);
-  EXPECT_NE(p, std::string::npos) << from;
-  return s.replace(p, from.size(), to);
-}
+using fsi::test::replaced;
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "TestScenes.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/Scene.hpp"
@@ -31,19 +32,10 @@ time: {end: 0.02}
 )";
 
 std::string errorOf(const std::string& yaml) {
-  try {
-    loadSceneFromString(yaml, "toggle.yaml");
-  } catch (const fsi::InputError& e) {
-    return e.what();
-  }
-  return "";
+  return fsi::test::sceneError(yaml, "toggle.yaml");
 }
 
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-  const auto p = s.find(from);
-  EXPECT_NE(p, std::string::npos) << from;
-  return s.replace(p, from.size(), to);
-}
+using fsi::test::replaced;
 
 }  // namespace
 

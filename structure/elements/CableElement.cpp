@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "structure/elements/CableForces.hpp"
+#include "structure/scene/ReadMaterials.hpp"
+#include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
 
@@ -80,6 +82,16 @@ void CableKind::addFields(const Model& model, const double* x, const std::set<st
   buffers.arrays.resize(1);
   cableTensions(model.cables, x, buffers.arrays[0]);
   views.push_back({"cable_force", FieldView::Center::Line, 1, buffers.arrays[0].data()});
+}
+
+void CableKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
+  if (entry.has("cable_material"))
+    in.cableMaterial = materialRef(entry, "cable_material", materialsOfKind(materials, "cable"), "cable");
+}
+
+void CableKind::checkMeshInput(const YamlMap& entry, const MeshInput& in) const {
+  if (!in.mesh.lines.empty() && in.cableMaterial < 0)
+    entry.fail("this mesh has lines: give it a 'cable_material'");
 }
 
 }  // namespace fsi::structure

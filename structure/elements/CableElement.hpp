@@ -14,6 +14,10 @@ class CableKind final : public ElementKind {
   std::string describe(const Model& model, int element) const override {
     return model.describeCable(element);
   }
+  /// `cable_material: NAME`, a cable material.
+  std::vector<std::string> meshKeys() const override { return {"cable_material"}; }
+  void readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const override;
+  void checkMeshInput(const YamlMap& entry, const MeshInput& in) const override;
   std::unique_ptr<Effect> makeForces(const Model& model, const ElementDamping& damping) const override;
   void addLumpedMass(const Model& model, std::vector<double>& mass) const override;
   double referenceStableDt(const Model& model) const override;

@@ -1,9 +1,9 @@
 #pragma once
 // ElementKind: everything the solver needs to know about one kind of element (membrane triangle, cable, ...),
-// behind one small interface. A kind works on its own structure-of-arrays block in the Model
-// (model.membranes, model.cables) and keeps its per-element loops inside its own file, templated on
-// compile-time options: the solver makes one virtual call per element kind (per step for the forces), never
-// one per element.
+// behind one small interface. A kind works on its own structure-of-arrays block in the Model (the typed
+// model.membranes and model.cables, or a block the kind builds itself in model.kindBlocks, e.g. the point
+// masses) and keeps its per-element loops inside its own file, templated on compile-time options: the solver
+// makes one virtual call per element kind (per step for the forces), never one per element.
 //
 // What a kind provides:
 //   forces       makeForces(): the Effect that adds the internal forces and bounds the stable step (none for
@@ -13,6 +13,8 @@
 //                addStressBoundMass() (the stress-based fictitious mass);
 //   output       outputFields() and addFields() (the element-centred fields of the result files);
 //   diagnosis    mostStrained() and describe() (names an element in messages).
+//   input        meshKeys(), readMeshKeys(), checkMeshInput() (the kind's keys of a scene's mesh entry) and
+//                build() (its own block of the model, for a kind other than membranes and cables).
 // Kinds are registered by name in elementKinds() (ElementRegistry.cpp): the order there is the order of
 // every loop over kinds (mass sums, field lists), so results do not depend on anything else.
 
@@ -27,6 +29,8 @@
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure {
+
+class YamlMap;
 
 /// Element damping, the same for every kind: stiffness-proportional Rayleigh β [s] and the linear bulk
 /// viscosity b1 (viscous stress b1 ρ c L_e times the strain rate, ρ and c the element's — scaled — density
@@ -62,6 +66,22 @@ class ElementKind {
   virtual int count(const Model& model) const = 0;
   /// "triangle 12 of mesh 'canopy'".
   virtual std::string describe(const Model& model, int element) const = 0;
+
+  /// Keys of a scene's mesh entry that this kind reads (`material` for membranes); the mesh reader accepts
+  /// the keys of every registered kind, in registry order, besides `file` and `generator`.
+  virtual std::vector<std::string> meshKeys() const { return {}; }
+  /// Reads this kind's mesh keys of one mesh entry into `in` (errors located at the key). Default: none.
+  virtual void readMeshKeys(const YamlMap& /*entry*/, const MaterialTable& /*materials*/,
+                            MeshInput& /*in*/) const {}
+  /// Called once the entry's keys are known to be valid: rejects a mesh that has elements of this kind but
+  /// no material for them (located at the entry). Default: nothing to check.
+  virtual void checkMeshInput(const YamlMap& /*entry*/, const MeshInput& /*in*/) const {}
+  /// Builds the kind's own block in `model.kindBlocks` from the meshes (called by buildModel for every kind,
+  /// in registry order, once the nodes are numbered: model.meshes[m].node maps a mesh-local node) and
+  /// validates its materials and references (InputError naming the mesh). The lumped masses are summed
+  /// after every kind is built. Default: nothing (membranes and cables are buildModel's typed blocks).
+  virtual void build(const std::vector<MeshInput>& /*inputs*/, const MaterialTable& /*materials*/,
+                     Model& /*model*/) const {}
 
   /// The force effect over the kind's elements (references the model: create it once the model is in place);
   /// nullptr for a kind without internal forces (a point mass).

@@ -6,6 +6,8 @@
 
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/elements/MembraneKinematics.hpp"
+#include "structure/scene/ReadMaterials.hpp"
+#include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
 
@@ -167,6 +169,16 @@ std::optional<StrainedElement> MembraneKind::mostStrained(const Model& model, co
   }
   if (worst.element < 0) return std::nullopt;
   return worst;
+}
+
+void MembraneKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
+  if (entry.has("material"))
+    in.membraneMaterial = materialRef(entry, "material", materialsOfKind(materials, "membrane"), "membrane");
+}
+
+void MembraneKind::checkMeshInput(const YamlMap& entry, const MeshInput& in) const {
+  if (!in.mesh.triangles.empty() && in.membraneMaterial < 0)
+    entry.fail("this mesh has triangles: give it a membrane 'material'");
 }
 
 }  // namespace fsi::structure

@@ -2,13 +2,81 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <limits>
+
+#include "structure/model/Error.hpp"
+#include "structure/scene/JoinNames.hpp"
+#include "structure/scene/NearestName.hpp"
+#include "structure/scene/ReadMaterials.hpp"
+#include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
 
+const PointMasses& pointMassesOf(const Model& model) {
+  static const PointMasses none;
+  const PointMasses* P = model.block<PointMasses>("point_mass");
+  return P ? *P : none;
+}
+
 std::string PointMassKind::describe(const Model& model, int element) const {
-  const PointMasses& P = model.pointMasses;
+  const PointMasses& P = pointMassesOf(model);
   return fmt::format("point mass {} of mesh '{}'", P.tag[element], model.meshes[P.mesh[element]].name);
+}
+
+// `point_masses: {NODE_GROUP: MATERIAL, ...}`: every node of the mesh's node group carries one point mass of
+// the point_mass material (a payload on the parafoil's `payload` node).
+void PointMassKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
+  if (!entry.has("point_masses")) return;
+  const YamlMap pm = entry.map("point_masses");
+  const auto& idx = materialsOfKind(materials, "point_mass");
+  const MeshData& mesh = in.mesh;
+  PointMassInput out;
+  if (pm.keys().empty()) pm.fail("give at least one 'NODE_GROUP: MATERIAL' pair, or leave point_masses out");
+  std::vector<std::string> groups;
+  for (const auto& kv : mesh.nodeGroups) groups.push_back(kv.first);
+  for (const auto& group : pm.keys()) {
+    const int material = materialRef(pm, group, idx, "point_mass");
+    const auto it = mesh.nodeGroups.find(group);
+    if (it == mesh.nodeGroups.end()) {
+      const std::string near = closestMatch(group, groups);
+      pm.failAt(group, fmt::format("the mesh has no node group '{}'{}; its node groups: {}", group,
+                                   near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                   groups.empty() ? "(none)" : joinNames(groups)));
+    }
+    if (it->second.empty()) pm.failAt(group, fmt::format("node group '{}' is empty", group));
+    for (int node : it->second) out.push_back({node, material});
+  }
+  in.kindInputs[name()] = std::move(out);
+}
+
+void PointMassKind::build(const std::vector<MeshInput>& inputs, const MaterialTable& materials,
+                          Model& model) const {
+  PointMasses P;
+  P.materials = materials.pointMass;
+  for (const auto& m : P.materials)
+    if (!(m.mass > 0) || !std::isfinite(m.mass))
+      throw InputError(fmt::format("material '{}': mass must be finite and > 0", m.name));
+  for (std::size_t m = 0; m < inputs.size(); ++m) {
+    const auto it = inputs[m].kindInputs.find(name());
+    if (it == inputs[m].kindInputs.end()) continue;
+    const MeshData& md = inputs[m].mesh;
+    long number = 0;
+    for (const auto& [local, material] : std::any_cast<const PointMassInput&>(it->second)) {
+      ++number;
+      if (local < 0 || local >= int(md.points.size()))
+        throw InputError(fmt::format("mesh '{}': point mass {} refers to node index {} out of range", md.name,
+                                     number, local));
+      if (material < 0 || material >= int(P.materials.size()))
+        throw InputError(fmt::format("mesh '{}': point mass {} has no point_mass material", md.name, number));
+      P.node.push_back(model.meshes[m].node[local]);
+      P.mass.push_back(P.materials[material].mass);
+      P.tag.push_back(number);
+      P.mesh.push_back(int(m));
+    }
+  }
+  P.count = int(P.node.size());
+  model.kindBlocks[name()] = std::move(P);
 }
 
 std::unique_ptr<Effect> PointMassKind::makeForces(const Model& /*model*/,
@@ -17,7 +85,7 @@ std::unique_ptr<Effect> PointMassKind::makeForces(const Model& /*model*/,
 }
 
 void PointMassKind::addLumpedMass(const Model& model, std::vector<double>& mass) const {
-  const PointMasses& P = model.pointMasses;
+  const PointMasses& P = pointMassesOf(model);
   for (int e = 0; e < P.count; ++e) mass[P.node[e]] += P.mass[e];
 }
 

@@ -76,16 +76,18 @@ std::vector<int> mortonOrder(const std::vector<std::array<double, 3>>& pts) {
 }  // namespace
 
 Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> membraneMaterials,
-                 std::vector<CableMaterial> cableMaterials,
-                 std::vector<PointMassMaterial> pointMassMaterials) {
-  checkMaterials(membraneMaterials, cableMaterials);
-  for (const auto& m : pointMassMaterials)
-    if (!(m.mass > 0) || !std::isfinite(m.mass))
-      throw InputError(fmt::format("material '{}': mass must be finite and > 0", m.name));
+                 std::vector<CableMaterial> cableMaterials) {
+  MaterialTable table;
+  table.membrane = std::move(membraneMaterials);
+  table.cable = std::move(cableMaterials);
+  return buildModel(std::move(inputs), table);
+}
+
+Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) {
+  checkMaterials(materials.membrane, materials.cable);
   Model model;
-  model.membraneMaterials = std::move(membraneMaterials);
-  model.cableMaterials = std::move(cableMaterials);
-  model.pointMassMaterials = std::move(pointMassMaterials);
+  model.membraneMaterials = materials.membrane;
+  model.cableMaterials = materials.cable;
 
   // 1. Concatenate the points of all meshes and renumber along a Morton curve.
   std::vector<std::array<double, 3>> pts;
@@ -271,25 +273,8 @@ Model buildModel(std::vector<MeshInput> inputs, std::vector<MembraneMaterial> me
     C.blocks.back().end = e + 1;
   }
 
-  // 4. Point masses, in mesh order.
-  PointMasses& P = model.pointMasses;
-  for (std::size_t m = 0; m < inputs.size(); ++m) {
-    const MeshData& md = inputs[m].mesh;
-    long number = 0;
-    for (const auto& [local, material] : inputs[m].pointMasses) {
-      ++number;
-      if (local < 0 || local >= int(md.points.size()))
-        throw InputError(fmt::format("mesh '{}': point mass {} refers to node index {} out of range", md.name,
-                                     number, local));
-      if (material < 0 || material >= int(model.pointMassMaterials.size()))
-        throw InputError(fmt::format("mesh '{}': point mass {} has no point_mass material", md.name, number));
-      P.node.push_back(model.meshes[m].node[local]);
-      P.mass.push_back(model.pointMassMaterials[material].mass);
-      P.tag.push_back(number);
-      P.mesh.push_back(int(m));
-    }
-  }
-  P.count = int(P.node.size());
+  // 4. Every other element kind builds its own block, in registry order.
+  for (const ElementKind* kind : elementKinds()) kind->build(inputs, materials, model);
 
   // 5. Lumped masses, each element kind adding its own.
   for (const ElementKind* kind : elementKinds()) kind->addLumpedMass(model, N.mass);

@@ -7,10 +7,13 @@
 // elements touch neighbouring memory. User-facing ids (Gmsh tags, generator ids) are kept in `tag` arrays and
 // only used in messages and output.
 
+#include <any>
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
+#include "structure/material/MaterialTypes.hpp"
 #include "structure/model/Materials.hpp"
 #include "structure/model/MeshData.hpp"
 
@@ -70,15 +73,6 @@ struct Cables {
   std::vector<int> mesh;
 };
 
-/// Point masses: a lumped mass on one node each, no internal force, no stiffness.
-struct PointMasses {
-  int count = 0;
-  std::vector<int> node;     ///< model node carrying the mass
-  std::vector<double> mass;  ///< [kg]
-  std::vector<long> tag;     ///< 1-based number of the point mass within its mesh
-  std::vector<int> mesh;
-};
-
 /// Where the entities of one input mesh went after renumbering.
 struct MeshMap {
   std::string name;
@@ -92,11 +86,26 @@ struct Model {
   Nodes nodes;
   MembraneTriangles membranes;
   Cables cables;
-  PointMasses pointMasses;
   std::vector<MembraneMaterial> membraneMaterials;
   std::vector<CableMaterial> cableMaterials;
-  std::vector<PointMassMaterial> pointMassMaterials;
   std::vector<MeshMap> meshes;
+  /// The storage of every other element kind, owned generically: a kind creates its block in
+  /// ElementKind::build (any copyable type, e.g. a structure-of-arrays struct with its materials) and finds
+  /// it again by its registry name through block<T>(). Membranes and cables keep their typed blocks above,
+  /// because surface effects, probes and the coupling interface read them directly.
+  std::map<std::string, std::any> kindBlocks;
+
+  /// The block of kind `kind`, or nullptr if the kind created none (or one of another type).
+  template <class Block>
+  const Block* block(const std::string& kind) const {
+    const auto it = kindBlocks.find(kind);
+    return it == kindBlocks.end() ? nullptr : std::any_cast<Block>(&it->second);
+  }
+  template <class Block>
+  Block* block(const std::string& kind) {
+    const auto it = kindBlocks.find(kind);
+    return it == kindBlocks.end() ? nullptr : std::any_cast<Block>(&it->second);
+  }
 
   /// Human-readable name of a node / element for messages: "node 17 of mesh 'canopy'".
   std::string describeNode(int node) const;
@@ -109,16 +118,20 @@ struct MeshInput {
   MeshData mesh;
   int membraneMaterial = -1;
   int cableMaterial = -1;
-  /// Point masses: (mesh-local node index, index into the point-mass materials), one per carrying node.
-  std::vector<std::array<int, 2>> pointMasses;
+  /// What the mesh carries for every other element kind, by kind name: each kind stores here what its mesh
+  /// keys say (ElementKind::readMeshKeys) and reads it back in ElementKind::build (e.g. the point masses'
+  /// (node, material) pairs).
+  std::map<std::string, std::any> kindInputs;
 };
 
-/// Builds a Model: merges meshes, renumbers, precomputes reference geometry and lumped masses, and rejects
+/// Builds a Model: merges meshes, renumbers, precomputes reference geometry, lets every registered element
+/// kind build its own block (ElementKind::build, in registry order), sums the lumped masses, and rejects
 /// degenerate input (zero-area triangles, zero-length cables, repeated nodes in an element, massless nodes)
 /// with an InputError naming the element or node.
+Model buildModel(std::vector<MeshInput> meshes, const MaterialTable& materials);
+/// The same for membranes and cables only.
 Model buildModel(std::vector<MeshInput> meshes, std::vector<MembraneMaterial> membraneMaterials,
-                 std::vector<CableMaterial> cableMaterials,
-                 std::vector<PointMassMaterial> pointMassMaterials = {});
+                 std::vector<CableMaterial> cableMaterials);
 
 /// Membrane dilatational wave speed c_d = sqrt(Y / (ρ (1 − ν²))).
 double membraneWaveSpeed(const MembraneMaterial& m);

@@ -6,7 +6,9 @@
 #include <string>
 
 #include "structure/elements/ElementKind.hpp"
+#include "structure/elements/PointMassElement.hpp"
 #include "structure/material/MaterialTypes.hpp"
+#include "structure/model/Error.hpp"
 #include "structure/scene/Generators.hpp"
 #include "structure/scene/Scene.hpp"
 
@@ -91,6 +93,69 @@ time: {end: 1.0e-3}
 
 // The scene's materials block reads through the registry: its types and each type's keys are the valid ones,
 // with "did you mean" and located messages.
+// Each kind declares the keys of a scene's mesh entry it reads; the mesh reader accepts exactly those (plus
+// where the mesh comes from), so a misspelt key is answered from the registry.
+TEST(ElementKinds, DeclareTheMeshKeysTheyRead) {
+  EXPECT_EQ(findElementKind("membrane")->meshKeys(), std::vector<std::string>{"material"});
+  EXPECT_EQ(findElementKind("cable")->meshKeys(), std::vector<std::string>{"cable_material"});
+  EXPECT_EQ(findElementKind("point_mass")->meshKeys(), std::vector<std::string>{"point_masses"});
+  std::set<std::string> keys;
+  for (const ElementKind* k : elementKinds())
+    for (const std::string& key : k->meshKeys()) EXPECT_TRUE(keys.insert(key).second) << key;
+  const char* yaml = R"(materials:
+  line: {type: cable, young: 1.0e9, area: 1.0e-4, density: 1000}
+  payload: {type: point_mass, mass: 5}
+meshes:
+  riser:
+    generator: {type: cable_chain, points: [[0, 0, 0], [0, 0, -1]], divisions: [2]}
+    cable_material: line
+    point_mass: {end: payload}
+)";
+  std::string what;
+  try {
+    loadSceneFromString(yaml, "keys.yaml");
+  } catch (const fsi::InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("keys.yaml:8"), std::string::npos) << what;
+  EXPECT_NE(what.find("did you mean 'point_masses'"), std::string::npos) << what;
+}
+
+// A kind other than membranes and cables builds its own block of the model (buildModel calls it with the
+// meshes and the whole material table) and finds it again by its name: the point mass, from what its mesh key
+// left in the mesh input.
+TEST(ElementKinds, AKindBuildsItsOwnBlockFromTheMeshes) {
+  CableChainParams cp;
+  cp.points = {{0, 0, 0}, {0, 0, -3}};
+  cp.divisions = {3};
+  MeshInput line;
+  line.mesh = cableChain(cp, "line");
+  line.cableMaterial = 0;
+  line.kindInputs["point_mass"] = PointMassInput{{3, 0}};
+  MaterialTable table;
+  table.cable = {CableMaterial{"c", 1e9, 1e-4, 1500}};
+  table.pointMass = {PointMassMaterial{"payload", 70}};
+  Model m = buildModel({line}, table);
+  const PointMasses* P = m.block<PointMasses>("point_mass");
+  ASSERT_NE(P, nullptr);
+  ASSERT_EQ(P->count, 1);
+  EXPECT_EQ(P->node[0], m.meshes[0].node[3]);
+  EXPECT_EQ(findElementKind("point_mass")->count(m), 1);
+  // Half of the last cable (ρ A L_e / 2) plus the payload.
+  EXPECT_NEAR(m.nodes.physicalMass[P->node[0]], 70 + 0.5 * 1500 * 1e-4 * 1.0, 1e-12);
+  // A model without point-mass input has an empty block, and the kind counts none.
+  line.kindInputs.clear();
+  EXPECT_EQ(findElementKind("point_mass")->count(buildModel({line}, table)), 0);
+  // The kind's own checks name the mesh.
+  line.kindInputs["point_mass"] = PointMassInput{{9, 0}};
+  try {
+    buildModel({line}, table);
+    ADD_FAILURE() << "no error";
+  } catch (const fsi::InputError& e) {
+    EXPECT_STREQ(e.what(), "mesh 'line': point mass 1 refers to node index 9 out of range");
+  }
+}
+
 TEST(MaterialTypes, SceneMaterialsComeFromTheRegistry) {
   EXPECT_EQ(materialError("{type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}"),
             "");

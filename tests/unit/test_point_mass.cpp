@@ -10,6 +10,7 @@
 #include "TestScenes.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/elements/ElementKind.hpp"
+#include "structure/elements/PointMassElement.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/integrate/MassScaling.hpp"
 #include "structure/model/Error.hpp"
@@ -64,7 +65,7 @@ TEST(PointMass, IsARegisteredKindWithoutForcesOrStepBound) {
 TEST(PointMass, AddsItsMassToTheNodeAndGravityActsOnIt) {
   Scene s = loadSceneFromString(kHanging, "payload.yaml");
   const Model& m = *s.model;
-  const int node = m.pointMasses.node[0];
+  const int node = pointMassesOf(m).node[0];
   const double halfCable = 0.5 * 906 * 3.0e-6 * 0.25;
   EXPECT_NEAR(m.nodes.physicalMass[node], 80 + halfCable, 1e-12);
   double total = 0;
@@ -87,7 +88,7 @@ TEST(PointMass, HangingPayloadTensionIsItsWeightPlusTheLineBelow) {
   std::vector<double> T;
   cableTensions(m.cables, m.nodes.x.data(), T);
   const double rhoA = 906 * 3.0e-6, Le = 0.25;
-  const int bottom = m.pointMasses.node[0];
+  const int bottom = pointMassesOf(m).node[0];
   for (int e = 0; e < m.cables.count; ++e) {
     const int a = m.cables.conn[2 * e], b = m.cables.conn[2 * e + 1];
     // Cable elements below: count the nodes strictly below this element's upper node (z of the reference).
@@ -131,7 +132,7 @@ time: {end: 10}
 )";
   Scene s = loadSceneFromString(yaml, "pendulum.yaml");
   Model& m = *s.model;
-  const int bob = m.pointMasses.node[0];
+  const int bob = pointMassesOf(m).node[0];
   CentralDifference cd(m, s.effectList(), s.constraints, CentralDifferenceSettings{});
   // Upward zero crossings of x (from x < 0 to x ≥ 0), linearly interpolated in time.
   std::vector<double> crossings;
@@ -182,8 +183,8 @@ time: {end: 1.0e-3}
       share += 0.5 * 906 * 3.0e-6 * std::sqrt(len2);
     }
   EXPECT_GT(share, 0);
-  ASSERT_EQ(m.pointMasses.count, 1);
-  EXPECT_EQ(m.pointMasses.node[0], m.meshes[0].node[local]);
+  ASSERT_EQ(pointMassesOf(m).count, 1);
+  EXPECT_EQ(pointMassesOf(m).node[0], m.meshes[0].node[local]);
   EXPECT_NEAR(m.nodes.physicalMass[m.meshes[0].node[local]], 80 + share, 1e-12);
 }
 

@@ -124,20 +124,29 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
     }
     for (const std::string& probe : expects.keys()) {
       YamlMap e = expects.map(probe);
-      const double value = e.number("value");
+      // The expected value: a number (an analytic or published reference), or `equal_to: OTHER` — another
+      // probe of the same run (a symmetry or balance that must hold whatever the values are).
+      const bool other = e.has("equal_to");
+      if (other == e.has("value")) e.fail("give exactly one of 'value' (a number) or 'equal_to' (a probe)");
+      const std::string otherName = other ? e.string("equal_to") : std::string();
+      const double given = other ? 0.0 : e.number("value");
       const double relTol = e.number("rel_tol");
-      e.finish({"value", "rel_tol"});
+      e.finish({"value", "equal_to", "rel_tol"});
       if (!(relTol >= 0)) e.failAt("rel_tol", "must be >= 0");
       const auto it = r.probes.find(probe);
       if (it == r.probes.end()) expects.failAt(probe, fmt::format("the scene defines no probe '{}'", probe));
+      const auto ot = other ? r.probes.find(otherName) : r.probes.end();
+      if (other && ot == r.probes.end())
+        e.failAt("equal_to", fmt::format("the scene defines no probe '{}'", otherName));
+      const double value = other ? ot->second : given;
       // Relative error; for an expected 0 the tolerance is absolute.
       const double err = std::abs(it->second - value) / (value != 0.0 ? std::abs(value) : 1.0);
       const bool ok = r.exitCode() == 0 && err <= relTol;
       failures += ok ? 0 : 1;
       ++total;
-      fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n", label + ": " + probe, it->second,
-                 value, 100 * err, 100 * relTol, ok ? "ok" : "FAIL",
-                 r.exitCode() ? " (" + toString(r.reason) + ")" : "");
+      fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n",
+                 label + ": " + probe + (other ? " = " + otherName : ""), it->second, value, 100 * err,
+                 100 * relTol, ok ? "ok" : "FAIL", r.exitCode() ? " (" + toString(r.reason) + ")" : "");
     }
   }
   fmt::print("{} of {} checks passed\n", total - failures, total);

@@ -285,25 +285,36 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
     // Groups of `cascade` load-bearing ribs per half-span from the tip inward; a rib on the symmetry plane
     // gets its own line.
     std::vector<std::vector<int>> groups;
+    std::vector<std::string> sides;  // the half-span group a line belongs to ("" on the symmetry plane)
     std::vector<int> leftHalf, rightHalf, centre;
     for (int r : loadRibs) (2 * r < q.cells ? leftHalf : 2 * r > q.cells ? rightHalf : centre).push_back(r);
     std::reverse(rightHalf.begin(), rightHalf.end());  // from the right tip inward
     for (const auto* half : {&leftHalf, &rightHalf})
-      for (std::size_t g = 0; g < half->size(); g += std::size_t(q.cascade))
+      for (std::size_t g = 0; g < half->size(); g += std::size_t(q.cascade)) {
         groups.emplace_back(half->begin() + long(g),
                             half->begin() + long(std::min(half->size(), g + std::size_t(q.cascade))));
-    if (!centre.empty()) groups.push_back(centre);
-    for (const auto& g : groups) {
+        sides.push_back(half == &leftHalf ? "lines_left" : "lines_right");
+      }
+    if (!centre.empty()) {
+      groups.push_back(centre);
+      sides.emplace_back();
+    }
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+      const auto& g = groups[gi];
+      std::vector<std::string> tags{"lines", rowGroup};
+      if (!sides[gi].empty()) tags.push_back(sides[gi]);
       if (q.cascade == 1) {
-        chain(attach(g[0]), confluence, {"lines", rowGroup});
+        chain(attach(g[0]), confluence, tags);
         continue;
       }
       P3 mean{0, 0, 0};
       for (int r : g)
         for (int c = 0; c < 3; ++c) mean[c] += m.points[attach(r)][c] / double(g.size());
       const int junction = addPoint(lerp(mean, conf, q.cascadeFraction));
-      for (int r : g) chain(attach(r), junction, {"lines", rowGroup});
-      chain(junction, confluence, {"lines", "main_lines"});
+      for (int r : g) chain(attach(r), junction, tags);
+      std::vector<std::string> mainTags{"lines", "main_lines"};
+      if (!sides[gi].empty()) mainTags.push_back(sides[gi]);
+      chain(junction, confluence, mainTags);
     }
   }
   std::sort(attachments.begin(), attachments.end());

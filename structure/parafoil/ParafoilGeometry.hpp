@@ -24,7 +24,8 @@
 //
 // Sets (MeshData groups): triangles upper, lower, skin (upper + lower + tip ribs: the outer surface; closed
 // when the intake is), ribs, tip_ribs, inner_ribs; lines lines, lines_<row letter> (A, B, ...: attachment
-// and cascade segments of that row), main_lines, brakes_left, brakes_right, brakes, riser; nodes
+// and cascade segments of that row), lines_left, lines_right (every suspension line of one half-span; those
+// of a rib on the symmetry plane are in neither), main_lines, brakes_left, brakes_right, brakes, riser; nodes
 // leading_edge, trailing_edge, attachments, confluence, toggle_left, toggle_right, payload, intake_edge
 // (empty when closed).
 

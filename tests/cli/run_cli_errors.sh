@@ -110,6 +110,17 @@ expect 2 "case1/reference.yaml:5:5: checks[0].scene: duplicate key 'scene' (firs
 printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" \
   "    expect: {centre: {value: 0, rel_tol: -1}}" > case2/reference.yaml
 expect 2 "checks[0].expect.centre.rel_tol: must be >= 0" -- "$fsi" validate case2 --out v2 --quiet
+# equal_to: another probe of the same run; exactly one of value / equal_to; the other probe must exist.
+mkdir -p case3 case4 case5 && for c in case3 case4 case5; do cp good.yaml $c/scene.yaml; done
+printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" \
+  "    expect: {centre: {equal_to: centre, rel_tol: 0}}" > case3/reference.yaml
+expect 0 "centre = centre" -- "$fsi" validate case3 --out v3 --quiet
+printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" \
+  "    expect: {centre: {equal_to: centre, value: 0, rel_tol: 0}}" > case4/reference.yaml
+expect 2 "give exactly one of 'value' (a number) or 'equal_to' (a probe)" -- "$fsi" validate case4 --out v4 --quiet
+printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" \
+  "    expect: {centre: {equal_to: centr, rel_tol: 0}}" > case5/reference.yaml
+expect 2 "equal_to: the scene defines no probe 'centr'" -- "$fsi" validate case5 --out v5 --quiet
 
 # A good run: exit 0 and a readable summary.
 expect 0 "probe  centre" -- "$fsi" run good.yaml --out good-out

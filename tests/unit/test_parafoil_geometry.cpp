@@ -241,6 +241,12 @@ TEST(ParafoilGeometry, MirrorSymmetric) {
   for (const auto& t : m.triangles) EXPECT_TRUE(tris.count({mirror[t[0]], mirror[t[1]], mirror[t[2]]}));
   for (const auto& l : m.lines) EXPECT_TRUE(lines.count({mirror[l[0]], mirror[l[1]]}));
   EXPECT_EQ(m.lineGroups.at("brakes_left").size(), m.lineGroups.at("brakes_right").size());
+  // The left half's suspension lines are the mirror images of the right half's.
+  std::set<std::set<int>> right;
+  for (int e : m.lineGroups.at("lines_right")) right.insert({m.lines[e][0], m.lines[e][1]});
+  ASSERT_EQ(m.lineGroups.at("lines_left").size(), right.size());
+  for (int e : m.lineGroups.at("lines_left"))
+    EXPECT_TRUE(right.count({mirror[m.lines[e][0]], mirror[m.lines[e][1]]}));
   EXPECT_EQ(mirror[m.nodeGroups.at("toggle_left")[0]], m.nodeGroups.at("toggle_right")[0]);
 }
 

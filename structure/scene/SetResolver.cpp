@@ -173,14 +173,21 @@ std::vector<int> SetResolver::meshElements(const std::string& s, const YAML::Nod
   return out;
 }
 
+// The union of the selections of every item of a list selector (item paths "path[i]").
+template <class Resolve>
+std::vector<int> SetResolver::listUnion(const YAML::Node& list, const std::string& path, std::size_t entities,
+                                        Resolve resolve) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < list.size(); ++i)
+    append(out, resolve(list[i], fmt::format("{}[{}]", path, i)), entities);
+  return out;
+}
+
 std::vector<int> SetResolver::nodesRaw(const YAML::Node& sel, const std::string& path) const {
   if (sel.IsScalar()) return nodesByName(sel.Scalar(), sel, path);
-  if (sel.IsSequence()) {
-    std::vector<int> out;
-    for (std::size_t i = 0; i < sel.size(); ++i)
-      append(out, nodesRaw(sel[i], fmt::format("{}[{}]", path, i)), std::size_t(model_.nodes.count));
-    return out;
-  }
+  if (sel.IsSequence())
+    return listUnion(sel, path, std::size_t(model_.nodes.count),
+                     [this](const YAML::Node& item, const std::string& p) { return nodesRaw(item, p); });
   YamlMap m(sel, file_, path);
   const Nodes& N = model_.nodes;
   std::vector<int> out;
@@ -260,12 +267,9 @@ std::vector<int> SetResolver::nodesRaw(const YAML::Node& sel, const std::string&
 
 std::vector<int> SetResolver::trianglesRaw(const YAML::Node& sel, const std::string& path) const {
   if (sel.IsScalar()) return trianglesByName(sel.Scalar(), sel, path);
-  if (sel.IsSequence()) {
-    std::vector<int> out;
-    for (std::size_t i = 0; i < sel.size(); ++i)
-      append(out, trianglesRaw(sel[i], fmt::format("{}[{}]", path, i)), std::size_t(model_.membranes.count));
-    return out;
-  }
+  if (sel.IsSequence())
+    return listUnion(sel, path, std::size_t(model_.membranes.count),
+                     [this](const YAML::Node& item, const std::string& p) { return trianglesRaw(item, p); });
   throw InputError(locate(file_, sel, path) +
                    ": a triangle selector is a set or mesh name ('mesh' or 'mesh/group') or a list of them");
 }
@@ -278,12 +282,9 @@ std::vector<int> SetResolver::lines(const YAML::Node& sel, const std::string& pa
 }
 
 std::vector<int> SetResolver::linesRaw(const YAML::Node& sel, const std::string& path) const {
-  if (sel.IsSequence()) {
-    std::vector<int> out;
-    for (std::size_t i = 0; i < sel.size(); ++i)
-      append(out, linesRaw(sel[i], fmt::format("{}[{}]", path, i)), std::size_t(model_.cables.count));
-    return out;
-  }
+  if (sel.IsSequence())
+    return listUnion(sel, path, std::size_t(model_.cables.count),
+                     [this](const YAML::Node& item, const std::string& p) { return linesRaw(item, p); });
   if (!sel.IsScalar())
     throw InputError(locate(file_, sel, path) +
                      ": a line selector is a mesh name ('mesh' or 'mesh/group') or a list of them");

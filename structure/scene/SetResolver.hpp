@@ -42,6 +42,9 @@ class SetResolver {
   static void sortUnique(std::vector<int>& v);
   static void append(std::vector<int>& out, const std::vector<int>& part, std::size_t entities);
   template <class Resolve>
+  static std::vector<int> listUnion(const YAML::Node& list, const std::string& path, std::size_t entities,
+                                    Resolve resolve);
+  template <class Resolve>
   std::vector<int> namedSet(const std::string& name, const Named& set, const YAML::Node& at,
                             const std::string& path, Memo& memo, Resolve resolve) const;
   int meshIndex(const std::string& name, const YAML::Node& at, const std::string& path) const;

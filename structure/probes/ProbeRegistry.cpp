@@ -18,11 +18,12 @@ ProbeKind reactionMomentProbe();  // ReactionMomentProbe.cpp
 ProbeKind pitchAngleProbe();      // PitchAngleProbe.cpp
 ProbeKind appliedLoadProbe();     // ReactionProbe.cpp
 ProbeKind equilibriumProbe();     // EquilibriumProbe.cpp
+ProbeKind laplaceProbe();         // LaplaceProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {
   static const std::vector<ProbeKind> kinds{
       displacementProbe(), positionProbe(),       reactionProbe(),   volumeProbe(),      stressProbe(),
-      lineTensionProbe(),  reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe(), equilibriumProbe()};
+      lineTensionProbe(),  reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe(), equilibriumProbe(), laplaceProbe()};
   return kinds;
 }
 

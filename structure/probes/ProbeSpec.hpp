@@ -25,6 +25,9 @@ enum class ProbeReduce { Value, Mean, Max, Min, Sum };
 /// Which principal membrane stress a stress probe reports.
 enum class StressQuantity { MaxPrincipal, MinPrincipal };
 
+/// What a laplace probe reports (LaplaceProbe.cpp).
+enum class LaplaceQuantity { Ratio, SimpleRatio, Radius, Tension, Pressure };
+
 struct ProbeSpec {
   std::string name;
   const ProbeKind* kind = nullptr;  ///< its entry in probeKinds()
@@ -36,6 +39,9 @@ struct ProbeSpec {
   ProbeComponent component = ProbeComponent::X;
   std::array<double, 3> center{0, 0, 0};
   StressQuantity quantity = StressQuantity::MaxPrincipal;
+  LaplaceQuantity laplace = LaplaceQuantity::Ratio;
+  std::array<double, 3> direction{0, 0, 0};  ///< laplace: the tangent direction of radius and tension
+  bool areaWeighted = false;                 ///< stress: the values are σ·A/ΣA, summed (an area mean)
 };
 
 }  // namespace fsi::structure

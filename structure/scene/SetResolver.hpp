@@ -16,6 +16,8 @@ class SetResolver {
  public:
   SetResolver(const Model& model, const std::string& file) : model_(model), file_(file) {}
 
+  const Model& model() const { return model_; }
+
   /// Declares the named set `name` (`sets:` entry) with its selector and key path.
   void define(const std::string& name, YAML::Node sel, const std::string& path);
 

@@ -1,0 +1,194 @@
+// laplace: the membrane's normal equilibrium at a node, measured from the deformed shape and the stresses.
+// A membrane carries a normal pressure p only through its curvature: p = N : b = N₁₁b₁₁ + 2N₁₂b₁₂ + N₂₂b₂₂
+// (Young–Laplace; N the stress resultant [N/m], b the curvature tensor of the current surface). For a
+// bulge between two ribs this is the relation T ≈ Δp·r when the other direction's term is negligible.
+// The probe fits a quadric to the node's two rings of neighbours (curvature), averages the stress resultant
+// of the node's triangles (area-weighted), and takes p from the applied load on the node over its tributary
+// area, so it checks the discrete solution against the continuum law without knowing which loads act.
+// Quantities: ratio = (N:b)/p (1 in the limit), simple_ratio = N_dd·b_dd/p (the one-direction bulge
+// relation T/(p·r) along `direction`), radius = 1/b_dd, tension = N_dd, pressure = p.
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "structure/probes/ProbeKinds.hpp"
+
+namespace fsi::structure {
+
+namespace {
+
+const std::vector<std::string> kKeys{"type", "nodes", "triangles", "quantity", "direction", "reduce"};
+
+void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int node, std::vector<int>& tris,
+                   std::vector<int>& ring);
+
+void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
+  spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
+  spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
+  static const std::vector<std::pair<std::string, LaplaceQuantity>> names{
+      {"ratio", LaplaceQuantity::Ratio},
+      {"simple_ratio", LaplaceQuantity::SimpleRatio},
+      {"radius", LaplaceQuantity::Radius},
+      {"tension", LaplaceQuantity::Tension},
+      {"pressure", LaplaceQuantity::Pressure}};
+  const std::string q = p.choice("quantity", {"ratio", "simple_ratio", "radius", "tension", "pressure"});
+  for (const auto& [name, value] : names)
+    if (name == q) spec.laplace = value;
+  const bool directional =
+      spec.laplace != LaplaceQuantity::Ratio && spec.laplace != LaplaceQuantity::Pressure;
+  if (directional) {
+    spec.direction = p.vec3("direction");
+    const auto& d = spec.direction;
+    if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0)) p.failAt("direction", "must not be the zero vector");
+  } else if (p.has("direction")) {
+    p.failAt("direction",
+             fmt::format("is only used by the quantities simple_ratio, radius and tension, not {}", q));
+  }
+  spec.reduce = readReduce(p, {"value", "mean", "max", "min"}, "value");
+  p.finish(kKeys);
+  // The fit needs the node inside the surface: at least 5 neighbours (the quadric's unknowns) in the set.
+  const Model& model = sets.model();
+  std::vector<int> tris, ring;
+  for (int n : spec.nodes) {
+    neighbourhood(model.membranes, spec.triangles, n, tris, ring);
+    if (tris.empty() || ring.size() < 5)
+      p.failAt("nodes",
+               fmt::format("node {} has {} triangles and {} neighbours in the probe's triangles; the "
+                           "curvature fit needs a node inside the surface with at least 5 neighbours",
+                           model.nodes.tag[n], tris.size(), ring.size()));
+  }
+}
+
+using V3 = Eigen::Vector3d;
+
+V3 at(const std::vector<double>& x, int n) {
+  return {x[3 * n], x[3 * n + 1], x[3 * n + 2]};
+}
+
+// Membrane thickness of element e from its reference data (geo = 1/a0, b0, 1/c0, t·A0; A0 = a0·c0/2).
+double thickness(const MembraneTriangles& T, int e) {
+  const double* g = &T.geo[MembraneTriangles::kGeo * e];
+  return 2.0 * g[3] * g[0] * g[2];
+}
+
+// The node's triangles in the set, and its neighbours up to two rings (without the node itself).
+void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int node, std::vector<int>& tris,
+                   std::vector<int>& ring) {
+  tris.clear();
+  ring.clear();
+  for (int e : set)
+    for (int k = 0; k < 3; ++k)
+      if (T.conn[3 * e + k] == node) tris.push_back(e);
+  std::vector<int> first;
+  for (int e : tris)
+    for (int k = 0; k < 3; ++k) first.push_back(T.conn[3 * e + k]);
+  std::sort(first.begin(), first.end());
+  first.erase(std::unique(first.begin(), first.end()), first.end());
+  for (int e : set)
+    for (int k = 0; k < 3; ++k)
+      if (std::binary_search(first.begin(), first.end(), T.conn[3 * e + k])) {
+        for (int j = 0; j < 3; ++j) ring.push_back(T.conn[3 * e + j]);
+        break;
+      }
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  ring.erase(std::remove(ring.begin(), ring.end(), node), ring.end());
+}
+
+double evaluateAt(const ProbeSpec& p, ProbeState& state, int node) {
+  const Model& model = *state.scene().model;
+  const Nodes& N = model.nodes;
+  const MembraneTriangles& T = model.membranes;
+  std::vector<int> tris, ring;
+  neighbourhood(T, p.triangles, node, tris, ring);
+  if (tris.empty() || ring.size() < 5) return std::nan("");
+  const V3 x0 = at(N.x, node);
+  // Normal and tributary area from the node's triangles (their orientation gives the normal's sign).
+  V3 normal = V3::Zero();
+  double area = 0;
+  for (int e : tris) {
+    const V3 a = at(N.x, T.conn[3 * e]), b = at(N.x, T.conn[3 * e + 1]), c = at(N.x, T.conn[3 * e + 2]);
+    const V3 n2 = (b - a).cross(c - a);
+    normal += n2;
+    area += 0.5 * n2.norm();
+  }
+  if (!(normal.norm() > 0)) return std::nan("");
+  normal.normalize();
+  // Quadric w = ½a u² + b uv + ½c v² + d u + e v through the node, in the tangent frame; the fitted slope
+  // (d, e) tilts the normal and the fit is repeated, so b is the curvature tensor to second order.
+  Eigen::Vector2d slope;
+  Eigen::Matrix2d hess;
+  V3 e1, e2;
+  for (int pass = 0; pass < 3; ++pass) {
+    e1 = (std::abs(normal.x()) < 0.9 ? V3::UnitX() : V3::UnitY()).cross(normal).normalized();
+    e2 = normal.cross(e1);
+    Eigen::MatrixXd A(ring.size(), 5);
+    Eigen::VectorXd w(ring.size());
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const V3 r = at(N.x, ring[i]) - x0;
+      const double u = r.dot(e1), v = r.dot(e2);
+      A.row(Eigen::Index(i)) << 0.5 * u * u, u * v, 0.5 * v * v, u, v;
+      w(Eigen::Index(i)) = r.dot(normal);
+    }
+    const Eigen::VectorXd c = A.colPivHouseholderQr().solve(w);
+    hess << c(0), c(1), c(1), c(2);
+    slope << c(3), c(4);
+    normal = (normal - slope(0) * e1 - slope(1) * e2).normalized();
+  }
+  // A surface that bends away from its normal (a bulge seen from outside) has positive curvature here.
+  const Eigen::Matrix2d b = -hess / std::pow(1.0 + slope.squaredNorm(), 1.5);
+  // Stress resultant N = σ·t (Cauchy stress, force per current length), area-averaged over the triangles.
+  const MembraneStressField& s = state.membraneStress();
+  Eigen::Matrix3d Nres = Eigen::Matrix3d::Zero();
+  double wsum = 0;
+  for (int e : tris) {
+    const double* c = &s.cauchy[6 * e];
+    Eigen::Matrix3d sig;
+    sig << c[0], c[3], c[5], c[3], c[1], c[4], c[5], c[4], c[2];
+    const V3 a = at(N.x, T.conn[3 * e]), bb = at(N.x, T.conn[3 * e + 1]), cc = at(N.x, T.conn[3 * e + 2]);
+    const double ae = 0.5 * (bb - a).cross(cc - a).norm();
+    Nres += ae * thickness(T, e) * sig;
+    wsum += ae;
+  }
+  Nres /= wsum;
+  Eigen::Matrix<double, 3, 2> E;
+  E.col(0) = e1;
+  E.col(1) = e2;
+  const Eigen::Matrix2d n2 = E.transpose() * Nres * E;
+  // The applied normal pressure, positive outward: the load on the node over its third of the triangles.
+  const double pressure = normal.dot(at(N.fext, node)) / (area / 3.0);
+  const double nb = (n2.array() * b.array()).sum();
+  if (p.laplace == LaplaceQuantity::Ratio) return nb / pressure;
+  if (p.laplace == LaplaceQuantity::Pressure) return pressure;
+  V3 d(p.direction[0], p.direction[1], p.direction[2]);
+  d -= d.dot(normal) * normal;
+  if (!(d.norm() > 1e-12)) return std::nan("");
+  d.normalize();
+  const Eigen::Vector2d dl(d.dot(e1), d.dot(e2));
+  const double bdd = dl.dot(b * dl), ndd = dl.dot(n2 * dl);
+  switch (p.laplace) {
+    case LaplaceQuantity::Radius:
+      return 1.0 / bdd;
+    case LaplaceQuantity::Tension:
+      return ndd;
+    default:
+      return ndd * bdd / pressure;
+  }
+}
+
+void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
+  for (int n : p.nodes) vals.push_back(evaluateAt(p, state, n));
+}
+
+}  // namespace
+
+ProbeKind laplaceProbe() {
+  return {
+      "laplace", kKeys,
+      "membrane normal equilibrium at nodes: (N:b)/p from the fitted curvature, the stresses and the load",
+      parse, evaluate};
+}
+
+}  // namespace fsi::structure

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "coupling/interface/SceneInterface.hpp"
@@ -103,6 +104,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   fmt::print("validate {}  (reference: {})\n", caseDir.string(), source);
   fmt::print("  {:<34} {:>14} {:>14} {:>9} {:>8}  {}\n", "check", "computed", "expected", "error", "tol", "");
   std::size_t total = 0;
+  std::map<std::string, std::map<std::string, double>> earlier;  // probes of the checks run, by label
   for (std::size_t i = 0; i < checks.size(); ++i) {
     YamlMap c(checks[i], refFile.string(), fmt::format("checks[{}]", i));
     const std::string label = c.string("label");
@@ -124,30 +126,52 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
     }
     for (const std::string& probe : expects.keys()) {
       YamlMap e = expects.map(probe);
-      // The expected value: a number (an analytic or published reference), or `equal_to: OTHER` — another
-      // probe of the same run (a symmetry or balance that must hold whatever the values are).
-      const bool other = e.has("equal_to");
-      if (other == e.has("value")) e.fail("give exactly one of 'value' (a number) or 'equal_to' (a probe)");
-      const std::string otherName = other ? e.string("equal_to") : std::string();
-      const double given = other ? 0.0 : e.number("value");
-      const double relTol = e.number("rel_tol");
-      e.finish({"value", "equal_to", "rel_tol"});
-      if (!(relTol >= 0)) e.failAt("rel_tol", "must be >= 0");
+      // The expected value, one of: `value` (an analytic or published reference), `equal_to: OTHER` —
+      // another probe of the same run (a symmetry or balance that must hold whatever the values are), or
+      // `baseline: LABEL` — the same probe in an earlier check (what a change must leave unchanged).
+      const int given = int(e.has("value")) + int(e.has("equal_to")) + int(e.has("baseline"));
+      if (given != 1)
+        e.fail(
+            "give exactly one of 'value' (a number), 'equal_to' (a probe) or 'baseline' (an earlier check)");
       const auto it = r.probes.find(probe);
       if (it == r.probes.end()) expects.failAt(probe, fmt::format("the scene defines no probe '{}'", probe));
-      const auto ot = other ? r.probes.find(otherName) : r.probes.end();
-      if (other && ot == r.probes.end())
-        e.failAt("equal_to", fmt::format("the scene defines no probe '{}'", otherName));
-      const double value = other ? ot->second : given;
+      double value = 0;
+      std::string against;
+      if (e.has("value")) {
+        value = e.number("value");
+      } else if (e.has("equal_to")) {
+        against = " = " + e.string("equal_to");
+        const auto ot = r.probes.find(e.string("equal_to"));
+        if (ot == r.probes.end())
+          e.failAt("equal_to", fmt::format("the scene defines no probe '{}'", e.string("equal_to")));
+        value = ot->second;
+      } else {
+        const std::string base = e.string("baseline");
+        against = " vs " + base;
+        const auto bt = earlier.find(base);
+        if (bt == earlier.end())
+          e.failAt("baseline",
+                   fmt::format("no earlier check is labelled '{}' (a baseline runs before the check "
+                               "that compares with it)",
+                               base));
+        const auto pt = bt->second.find(probe);
+        if (pt == bt->second.end())
+          e.failAt("baseline", fmt::format("the check '{}' has no probe '{}'", base, probe));
+        value = pt->second;
+      }
+      const double relTol = e.number("rel_tol");
+      e.finish({"value", "equal_to", "baseline", "rel_tol"});
+      if (!(relTol >= 0)) e.failAt("rel_tol", "must be >= 0");
       // Relative error; for an expected 0 the tolerance is absolute.
       const double err = std::abs(it->second - value) / (value != 0.0 ? std::abs(value) : 1.0);
       const bool ok = r.exitCode() == 0 && err <= relTol;
       failures += ok ? 0 : 1;
       ++total;
-      fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n",
-                 label + ": " + probe + (other ? " = " + otherName : ""), it->second, value, 100 * err,
-                 100 * relTol, ok ? "ok" : "FAIL", r.exitCode() ? " (" + toString(r.reason) + ")" : "");
+      fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n", label + ": " + probe + against,
+                 it->second, value, 100 * err, 100 * relTol, ok ? "ok" : "FAIL",
+                 r.exitCode() ? " (" + toString(r.reason) + ")" : "");
     }
+    earlier[label] = r.probes;
   }
   fmt::print("{} of {} checks passed\n", total - failures, total);
   return failures == 0 ? 0 : 1;

@@ -2,11 +2,11 @@
 // A membrane carries a normal pressure p only through its curvature: p = N : b = N₁₁b₁₁ + 2N₁₂b₁₂ + N₂₂b₂₂
 // (Young–Laplace; N the stress resultant [N/m], b the curvature tensor of the current surface). For a
 // bulge between two ribs this is the relation T ≈ Δp·r when the other direction's term is negligible.
-// The probe fits a quadric to the node's two rings of neighbours (curvature), averages the stress resultant
-// of the node's triangles (area-weighted), and takes p from the applied load on the node over its tributary
-// area, so it checks the discrete solution against the continuum law without knowing which loads act.
-// Quantities: ratio = (N:b)/p (1 in the limit), simple_ratio = N_dd·b_dd/p (the one-direction bulge
-// relation T/(p·r) along `direction`), radius = 1/b_dd, tension = N_dd, pressure = p.
+// The probe fits a quadric to the nodes of a patch of `rings` rings around the node (default 2: curvature),
+// averages the stress resultant over the same patch (area-weighted), and takes p from the applied load on the
+// node over its tributary area, so it checks the discrete solution against the continuum law without knowing
+// which loads act. Quantities: ratio = (N:b)/p (1 in the limit), simple_ratio = N_dd·b_dd/p (the
+// one-direction bulge relation T/(p·r) along `direction`), radius = 1/b_dd, tension = N_dd, pressure = p.
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -19,10 +19,11 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "nodes", "triangles", "quantity", "direction", "reduce"};
+const std::vector<std::string> kKeys{"type",      "nodes", "triangles", "quantity",
+                                     "direction", "rings", "reduce"};
 
-void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int node, std::vector<int>& tris,
-                   std::vector<int>& ring);
+void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int node, int rings,
+                   std::vector<int>& own, std::vector<int>& patch, std::vector<int>& ring);
 
 void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
   spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
@@ -47,16 +48,17 @@ void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
              fmt::format("is only used by the quantities simple_ratio, radius and tension, not {}", q));
   }
   spec.reduce = readReduce(p, {"value", "mean", "max", "min"}, "value");
+  spec.rings = int(p.integer("rings", 2, {1, 20}));
   p.finish(kKeys);
-  // The fit needs the node inside the surface: at least 5 neighbours (the quadric's unknowns) in the set.
+  // The fit needs the node inside the surface: at least 6 neighbours (the quadric's unknowns) in the set.
   const Model& model = sets.model();
-  std::vector<int> tris, ring;
+  std::vector<int> tris, patch, ring;
   for (int n : spec.nodes) {
-    neighbourhood(model.membranes, spec.triangles, n, tris, ring);
-    if (tris.empty() || ring.size() < 5)
+    neighbourhood(model.membranes, spec.triangles, n, spec.rings, tris, patch, ring);
+    if (tris.empty() || ring.size() < 6)
       p.failAt("nodes",
                fmt::format("node {} has {} triangles and {} neighbours in the probe's triangles; the "
-                           "curvature fit needs a node inside the surface with at least 5 neighbours",
+                           "curvature fit needs a node inside the surface with at least 6 neighbours",
                            model.nodes.tag[n], tris.size(), ring.size()));
   }
 }
@@ -73,27 +75,29 @@ double thickness(const MembraneTriangles& T, int e) {
   return 2.0 * g[3] * g[0] * g[2];
 }
 
-// The node's triangles in the set, and its neighbours up to two rings (without the node itself).
-void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int node, std::vector<int>& tris,
-                   std::vector<int>& ring) {
-  tris.clear();
-  ring.clear();
+// The node's own triangles in the set (`own`), and the patch `rings` rings around it: its triangles
+// (`patch`) and their nodes other than the node itself (`ring`).
+void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int node, int rings,
+                   std::vector<int>& own, std::vector<int>& patch, std::vector<int>& ring) {
+  own.clear();
   for (int e : set)
     for (int k = 0; k < 3; ++k)
-      if (T.conn[3 * e + k] == node) tris.push_back(e);
-  std::vector<int> first;
-  for (int e : tris)
-    for (int k = 0; k < 3; ++k) first.push_back(T.conn[3 * e + k]);
-  std::sort(first.begin(), first.end());
-  first.erase(std::unique(first.begin(), first.end()), first.end());
-  for (int e : set)
-    for (int k = 0; k < 3; ++k)
-      if (std::binary_search(first.begin(), first.end(), T.conn[3 * e + k])) {
-        for (int j = 0; j < 3; ++j) ring.push_back(T.conn[3 * e + j]);
-        break;
-      }
-  std::sort(ring.begin(), ring.end());
-  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      if (T.conn[3 * e + k] == node) own.push_back(e);
+  std::vector<int> reached{node};
+  for (int r = 0; r < rings; ++r) {
+    patch.clear();
+    for (int e : set)
+      for (int k = 0; k < 3; ++k)
+        if (std::binary_search(reached.begin(), reached.end(), T.conn[3 * e + k])) {
+          patch.push_back(e);
+          break;
+        }
+    for (int e : patch)
+      for (int k = 0; k < 3; ++k) reached.push_back(T.conn[3 * e + k]);
+    std::sort(reached.begin(), reached.end());
+    reached.erase(std::unique(reached.begin(), reached.end()), reached.end());
+  }
+  ring = reached;
   ring.erase(std::remove(ring.begin(), ring.end(), node), ring.end());
 }
 
@@ -101,9 +105,9 @@ double evaluateAt(const ProbeSpec& p, ProbeState& state, int node) {
   const Model& model = *state.scene().model;
   const Nodes& N = model.nodes;
   const MembraneTriangles& T = model.membranes;
-  std::vector<int> tris, ring;
-  neighbourhood(T, p.triangles, node, tris, ring);
-  if (tris.empty() || ring.size() < 5) return std::nan("");
+  std::vector<int> tris, patch, ring;
+  neighbourhood(T, p.triangles, node, p.rings, tris, patch, ring);
+  if (tris.empty() || ring.size() < 6) return std::nan("");
   const V3 x0 = at(N.x, node);
   // Normal and tributary area from the node's triangles (their orientation gives the normal's sign).
   V3 normal = V3::Zero();
@@ -116,20 +120,24 @@ double evaluateAt(const ProbeSpec& p, ProbeState& state, int node) {
   }
   if (!(normal.norm() > 0)) return std::nan("");
   normal.normalize();
-  // Quadric w = ½a u² + b uv + ½c v² + d u + e v through the node, in the tangent frame; the fitted slope
-  // (d, e) tilts the normal and the fit is repeated, so b is the curvature tensor to second order.
+  // Quadric w = ½a u² + b uv + ½c v² + d u + e v + f in the tangent frame, a least-squares fit over the
+  // patch: not forced through the node, so a fold or zigzag at element scale (a wrinkled membrane) does not
+  // become the curvature. The fitted slope (d, e) tilts the normal and the fit is repeated (b to second
+  // order).
   Eigen::Vector2d slope;
   Eigen::Matrix2d hess;
   V3 e1, e2;
   for (int pass = 0; pass < 3; ++pass) {
     e1 = (std::abs(normal.x()) < 0.9 ? V3::UnitX() : V3::UnitY()).cross(normal).normalized();
     e2 = normal.cross(e1);
-    Eigen::MatrixXd A(ring.size(), 5);
-    Eigen::VectorXd w(ring.size());
+    Eigen::MatrixXd A(ring.size() + 1, 6);
+    Eigen::VectorXd w(ring.size() + 1);
+    A.row(Eigen::Index(ring.size())) << 0, 0, 0, 0, 0, 1;  // the node itself
+    w(Eigen::Index(ring.size())) = 0;
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const V3 r = at(N.x, ring[i]) - x0;
       const double u = r.dot(e1), v = r.dot(e2);
-      A.row(Eigen::Index(i)) << 0.5 * u * u, u * v, 0.5 * v * v, u, v;
+      A.row(Eigen::Index(i)) << 0.5 * u * u, u * v, 0.5 * v * v, u, v, 1;
       w(Eigen::Index(i)) = r.dot(normal);
     }
     const Eigen::VectorXd c = A.colPivHouseholderQr().solve(w);
@@ -139,11 +147,13 @@ double evaluateAt(const ProbeSpec& p, ProbeState& state, int node) {
   }
   // A surface that bends away from its normal (a bulge seen from outside) has positive curvature here.
   const Eigen::Matrix2d b = -hess / std::pow(1.0 + slope.squaredNorm(), 1.5);
-  // Stress resultant N = σ·t (Cauchy stress, force per current length), area-averaged over the triangles.
+  // Stress resultant N = σ·t (Cauchy stress, force per current length), area-averaged over the patch: in a
+  // wrinkled region neighbouring triangles carry their tension in different directions, their mean is the
+  // resultant the mean surface carries.
   const MembraneStressField& s = state.membraneStress();
   Eigen::Matrix3d Nres = Eigen::Matrix3d::Zero();
   double wsum = 0;
-  for (int e : tris) {
+  for (int e : patch) {
     const double* c = &s.cauchy[6 * e];
     Eigen::Matrix3d sig;
     sig << c[0], c[3], c[5], c[3], c[1], c[4], c[5], c[4], c[2];

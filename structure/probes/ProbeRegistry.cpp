@@ -21,9 +21,10 @@ ProbeKind equilibriumProbe();     // EquilibriumProbe.cpp
 ProbeKind laplaceProbe();         // LaplaceProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {
-  static const std::vector<ProbeKind> kinds{
-      displacementProbe(), positionProbe(),       reactionProbe(),   volumeProbe(),      stressProbe(),
-      lineTensionProbe(),  reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe(), equilibriumProbe(), laplaceProbe()};
+  static const std::vector<ProbeKind> kinds{displacementProbe(),   positionProbe(),   reactionProbe(),
+                                            volumeProbe(),         stressProbe(),     lineTensionProbe(),
+                                            reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe(),
+                                            equilibriumProbe(),    laplaceProbe()};
   return kinds;
 }
 

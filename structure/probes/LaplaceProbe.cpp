@@ -50,16 +50,28 @@ void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
   spec.reduce = readReduce(p, {"value", "mean", "max", "min"}, "value");
   spec.rings = int(p.integer("rings", 2, {1, 20}));
   p.finish(kKeys);
-  // The fit needs the node inside the surface: at least 6 neighbours (the quadric's unknowns) in the set.
+  // The fit needs the node inside the surface (every edge at it shared by two of the triangles: a fit from
+  // one side of an edge extrapolates) and at least 6 neighbours, the quadric's unknowns.
   const Model& model = sets.model();
   std::vector<int> tris, patch, ring;
   for (int n : spec.nodes) {
     neighbourhood(model.membranes, spec.triangles, n, spec.rings, tris, patch, ring);
-    if (tris.empty() || ring.size() < 6)
+    std::vector<int> edgeEnds;
+    for (int e : tris)
+      for (int k = 0; k < 3; ++k)
+        if (model.membranes.conn[3 * e + k] != n) edgeEnds.push_back(model.membranes.conn[3 * e + k]);
+    std::sort(edgeEnds.begin(), edgeEnds.end());
+    bool inside = !edgeEnds.empty();
+    for (std::size_t i = 0; i < edgeEnds.size(); ++i) {
+      const bool paired = (i + 1 < edgeEnds.size() && edgeEnds[i + 1] == edgeEnds[i]) ||
+                          (i > 0 && edgeEnds[i - 1] == edgeEnds[i]);
+      inside = inside && paired;
+    }
+    if (!inside || ring.size() < 6)
       p.failAt("nodes",
-               fmt::format("node {} has {} triangles and {} neighbours in the probe's triangles; the "
-                           "curvature fit needs a node inside the surface with at least 6 neighbours",
-                           model.nodes.tag[n], tris.size(), ring.size()));
+               fmt::format("node {} is {} of the probe's triangles ({} neighbours); the curvature fit "
+                           "needs a node inside the surface with at least 6 neighbours",
+                           model.nodes.tag[n], tris.empty() ? "not on any" : "on the edge", ring.size()));
   }
 }
 

@@ -117,10 +117,26 @@ printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml"
 expect 0 "centre = centre" -- "$fsi" validate case3 --out v3 --quiet
 printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" \
   "    expect: {centre: {equal_to: centre, value: 0, rel_tol: 0}}" > case4/reference.yaml
-expect 2 "give exactly one of 'value' (a number) or 'equal_to' (a probe)" -- "$fsi" validate case4 --out v4 --quiet
+expect 2 "give exactly one of 'value' (a number), 'equal_to' (a probe) or 'baseline'" -- "$fsi" validate case4 --out v4 --quiet
 printf '%s\n' "reference: test" "checks:" "  - label: a" "    scene: scene.yaml" \
   "    expect: {centre: {equal_to: centr, rel_tol: 0}}" > case5/reference.yaml
 expect 2 "equal_to: the scene defines no probe 'centr'" -- "$fsi" validate case5 --out v5 --quiet
+# baseline: the same probe of an earlier check; a later or unknown label is an error, a failed comparison exits 1.
+mkdir -p case6 case7 case8 && for c in case6 case7 case8; do cp good.yaml $c/scene.yaml; done
+printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.yaml" \
+  "    expect: {centre: {value: 0, rel_tol: 1}}" "  - label: second" "    scene: scene.yaml" \
+  "    expect: {centre: {baseline: first, rel_tol: 0}}" > case6/reference.yaml
+expect 0 "second: centre vs first" -- "$fsi" validate case6 --out v6 --quiet
+printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.yaml" \
+  "    expect: {centre: {baseline: second, rel_tol: 0}}" "  - label: second" "    scene: scene.yaml" \
+  "    expect: {centre: {value: 0, rel_tol: 1}}" > case7/reference.yaml
+expect 2 "checks[0].expect.centre.baseline: no earlier check is labelled 'second'" -- \
+  "$fsi" validate case7 --out v7 --quiet
+printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.yaml" \
+  "    expect: {centre: {value: 0, rel_tol: 1}}" "  - label: second" "    scene: scene.yaml" \
+  "    set: 'effects.pressure={triangles: sheet, value: 2.0e4}'" "    expect: {centre: {baseline: first, rel_tol: 1.0e-3}}" \
+  > case8/reference.yaml
+expect 1 "FAIL" -- "$fsi" validate case8 --out v8 --quiet
 
 # A good run: exit 0 and a readable summary.
 expect 0 "probe  centre" -- "$fsi" run good.yaml --out good-out

@@ -49,6 +49,7 @@ void validate(const ParafoilParams& q) {
   }
   if (q.chordwisePoints < 4 || q.chordwisePoints > 10000)
     invalid("chordwise_points", fmt::format("is {}; valid: 4 to 10000", q.chordwisePoints));
+  requireRange("bulge", q.bulge, 0, 0.5, false, false);
   if (q.spanDivisions < 1 || q.spanDivisions > 10000)
     invalid("span_divisions", fmt::format("is {}; valid: 1 to 10000", q.spanDivisions));
   if (q.alternateRibs && q.cells % 2 != 0)
@@ -171,9 +172,45 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
     const int mirror = divisions - j;
     return j <= mirror ? -0.5 * q.span + q.span * j / divisions : 0.5 * q.span - q.span * mirror / divisions;
   };
+  // The bulge: each skin point between two ribs moves along the section's outward normal by the circular
+  // arc through the two ribs with height bulge·w at mid-cell (w = the cell width along the span), times the
+  // local thickness over the largest (the skins meet at the edges, so the bulge fades there).
+  std::vector<Point2> outward(ring, Point2{0, 0});
+  std::vector<double> taper(ring, 0.0);
+  if (q.bulge > 0) {
+    double tmax = 0;
+    for (int k = 1; k < n - 1; ++k) tmax = std::max(tmax, sec[k][1] - sec[2 * n - 2 - k][1]);
+    for (int k = 1; k < ring; ++k) {
+      if (k == n - 1) continue;  // the trailing edge
+      const Point2& a = sec[k - 1];
+      const Point2& b = sec[(k + 1) % ring];
+      const double tx = b[0] - a[0], ty = b[1] - a[1], tl = std::hypot(tx, ty);
+      outward[k] = {-ty / tl, tx / tl};  // the ring runs clockwise: outward is to the left
+      const int up = k < n ? k : 2 * n - 2 - k;
+      taper[k] = std::max(0.0, (sec[up][1] - sec[2 * n - 2 - up][1]) / tmax);
+    }
+  }
+  const double cellWidth = q.span / q.cells;
   for (int j = 0; j < stations; ++j) {
     const double s = spanAt(j);
-    for (int k = 0; k < ring; ++k) m.points.push_back(place(s, sec[k]));
+    const int inCell = j % q.spanDivisions;
+    double arc = 0;  // the arc's height at this station, in metres
+    if (q.bulge > 0 && inCell != 0) {
+      const double h = q.bulge * cellWidth, half = 0.5 * cellWidth;
+      const double r = (half * half + h * h) / (2 * h);
+      const double d = (double(inCell) / q.spanDivisions - 0.5) * cellWidth;
+      arc = std::sqrt(r * r - d * d) - (r - h);
+    }
+    const double frac = std::abs(2.0 * s / q.span);
+    const double chord = q.rootChord + (tip - q.rootChord) * frac;
+    for (int k = 0; k < ring; ++k) {
+      Point2 p = sec[k];
+      if (arc > 0) {
+        const double off = arc * taper[k] / chord;  // section coordinates are in chords
+        p = {p[0] + off * outward[k][0], p[1] + off * outward[k][1]};
+      }
+      m.points.push_back(place(s, p));
+    }
   }
   auto node = [&](int j, int k) { return j * ring + k; };
   auto lowerIndex = [&](int k) { return k == 0 ? 0 : 2 * n - 2 - k; };  // chord station of a lower ring node

@@ -53,6 +53,10 @@ struct ParafoilParams {
   // Resolution (independent of any fluid mesh).
   int chordwisePoints = 24;  ///< points per surface, leading and trailing edge included
   int spanDivisions = 2;     ///< span divisions per cell
+  /// Designed cell bulge: height of the skins' circular arc between two ribs over the cell width (0 = flat
+  /// panels), tapered along the chord with the local section thickness (none at the edges, full at the
+  /// thickest point): a canopy cut with its inflated shape, as real ones are.
+  double bulge = 0.0;
   // Suspension.
   bool alternateRibs = false;  ///< lines on every other rib (tips included) instead of every rib
   std::vector<double> rows{0.10, 0.30, 0.60, 0.80};  ///< attachment rows, x/c on the lower surface

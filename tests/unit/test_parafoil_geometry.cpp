@@ -160,7 +160,9 @@ TEST(AirfoilSection, BadSectionFilesAreLocated) {
 }
 
 TEST(ParafoilGeometry, ClosedSkinIsWatertightAndOutward) {
-  const MeshData m = buildParafoil(untwisted(16, 2));
+  ParafoilParams q = untwisted(16, 2);
+  q.bulge = 0.1;
+  const MeshData m = buildParafoil(q);
   const auto& skin = m.triangleGroups.at("skin");
   // Every directed edge of a closed, consistently oriented surface appears once, its reverse once.
   std::map<std::pair<int, int>, int> directed;
@@ -215,8 +217,46 @@ TEST(ParafoilGeometry, LinesAndAttachmentsAsSpecified) {
   EXPECT_NEAR(chainLength, 0.5, 1e-12);
 }
 
+TEST(ParafoilGeometry, BulgedCellsAreCircularArcsBetweenTheRibs) {
+  // Flat and bulged designs differ only between the ribs: the rib nodes stay, and at the thickest chord
+  // station the skin node at mid-cell stands out by bulge·w (w = b / cells), the others on the circular arc
+  // through the two ribs with that height.
+  ParafoilParams q = untwisted(24, 4);
+  q.arcRadius = 0;  // flat span: the offset is then the distance between the two designs
+  const MeshData flat = buildParafoil(q);
+  q.bulge = 0.2;
+  const MeshData bulged = buildParafoil(q);
+  ASSERT_EQ(flat.points.size(), bulged.points.size());
+  const int ring = 2 * q.chordwisePoints - 2;
+  const double w = q.span / q.cells, h = q.bulge * w, r = (w * w / 4 + h * h) / (2 * h);
+  // The thickest station of the upper surface: where flat upper minus lower z is largest.
+  int kMax = 1;
+  double tMax = 0;
+  for (int k = 1; k < q.chordwisePoints - 1; ++k) {
+    const double t = flat.points[k][2] - flat.points[2 * q.chordwisePoints - 2 - k][2];
+    if (t > tMax) tMax = t, kMax = k;
+  }
+  for (int j = 0; j <= q.cells * q.spanDivisions; ++j) {
+    const auto& a = flat.points[j * ring + kMax];
+    const auto& b = bulged.points[j * ring + kMax];
+    const double moved = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    const double d = (double(j % q.spanDivisions) / q.spanDivisions - 0.5) * w;
+    const double expected = j % q.spanDivisions == 0 ? 0.0 : std::sqrt(r * r - d * d) - (r - h);
+    EXPECT_NEAR(moved, expected, 1e-12) << "station " << j;
+    EXPECT_GE(b[2], a[2] - 1e-15) << "the upper skin bulges outward (up)";
+  }
+  // The leading and trailing edges do not move (the skins meet there).
+  for (int j = 0; j <= q.cells * q.spanDivisions; ++j)
+    for (int k : {0, q.chordwisePoints - 1})
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(flat.points[j * ring + k][c], bulged.points[j * ring + k][c]);
+  // Still closed and outward, and larger.
+  const auto& skin = bulged.triangleGroups.at("skin");
+  EXPECT_GT(enclosedVolume(bulged, skin), enclosedVolume(flat, flat.triangleGroups.at("skin")));
+}
+
 TEST(ParafoilGeometry, MirrorSymmetric) {
-  ParafoilParams q = untwisted(20, 2);
+  ParafoilParams q = untwisted(20, 3);
+  q.bulge = 0.15;
   q.twistDeg = 3;
   q.tipChord = 0.7;
   q.intakeOpen = true;
@@ -276,6 +316,7 @@ TEST(ParafoilGeometry, ImpossibleDesignsNameTheParameter) {
     return std::string("no error");
   };
   EXPECT_NE(message([](ParafoilParams& q) { q.cells = 0; }).find("'cells'"), std::string::npos);
+  EXPECT_NE(message([](ParafoilParams& q) { q.bulge = 0.6; }).find("'bulge'"), std::string::npos);
   EXPECT_NE(message([](ParafoilParams& q) { q.lineLength = 0.01; }).find("'line_length'"), std::string::npos);
   EXPECT_NE(message([](ParafoilParams& q) {
               q.intakeOpen = true;

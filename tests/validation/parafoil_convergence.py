@@ -22,14 +22,22 @@ import sys
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 CASE = ROOT / "cases" / "structure" / "parafoil-kt-inflation" / "scene.yaml"
 # (chordwise points, span divisions per cell): h shrinks by about 1.5 per level.
-LEVELS = [(16, 2), (24, 3), (36, 4)]
+LEVELS = [(20, 4), (30, 6), (45, 9)]
+# The mid-cell node of the centre cell's upper skin at x/c = 0.45 (design shape, bulge 0.25), 3 rings.
+AT = "nodes: {nearest: [0.44, 0.193, 0.17], among: wing/upper}, triangles: wing/upper, rings: 3"
+PROBES = {
+    "bulge_ratio": "{type: laplace, %s, quantity: ratio}" % AT,
+    "bulge_tension": "{type: laplace, %s, quantity: tension, direction: [0, 1, 0]}" % AT,
+}
 
 
 def run(fsi, out, chordwise, span):
     d = out / f"c{chordwise}_s{span}"
     cmd = [fsi, "run", str(CASE), "--out", str(d), "--quiet",
            "--set", f"meshes.wing.generator.chordwise_points={chordwise}",
-           "--set", f"meshes.wing.generator.span_divisions={span}"]
+           "--set", f"meshes.wing.generator.span_divisions={span}", "--set", "output.interval=0"]
+    for name, spec in PROBES.items():
+        cmd += ["--set", f"probes.{name}={spec}"]
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if r.returncode != 0:
         print(r.stdout[-3000:])

@@ -9,3 +9,10 @@ foreach(case_dir ${FSI_VALIDATION_CASES})
     set_tests_properties(validation.${case_name} PROPERTIES TIMEOUT 1200 LABELS validation)
   endif()
 endforeach()
+
+# The parafoil's structure resolution study: the mean stress and the mid-cell resultant converge, the
+# membrane's normal equilibrium at mid-cell approaches Young-Laplace (tests/validation/parafoil_convergence.py).
+add_test(NAME validation.parafoil-convergence
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/parafoil_convergence.py $<TARGET_FILE:fsi>
+                 ${PROJECT_BINARY_DIR}/validation/parafoil-convergence)
+set_tests_properties(validation.parafoil-convergence PROPERTIES TIMEOUT 1800 LABELS validation)

@@ -40,6 +40,17 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b);
 }
 
+// A token as messages show it: bytes outside printable ASCII as \xNN, long ones cut (a binary or corrupted
+// file must not put control characters or megabytes into a message).
+std::string shown(const std::string& t) {
+  std::string out;
+  for (std::size_t i = 0; i < t.size() && i < 40; ++i) {
+    const unsigned char c = static_cast<unsigned char>(t[i]);
+    out += (c >= 32 && c < 127) ? std::string(1, char(c)) : fmt::format("\\x{:02X}", c);
+  }
+  return t.size() > 40 ? out + "..." : out;
+}
+
 // A finite number filling the whole token; false otherwise (nan, inf, trailing characters, overflow).
 bool parseFinite(const std::string& t, double& v) {
   if (t.empty()) return false;
@@ -98,7 +109,7 @@ PointCloud readPointCloudCsv(const std::filesystem::path& file, const std::strin
         if (name.empty()) throw InputError(fmt::format("{}:{}: column {} has no name", f, lineNo, i + 1));
         for (std::size_t j = 0; j < i; ++j)
           if (lower(header[j]) == name)
-            throw InputError(fmt::format("{}:{}: column '{}' given twice", f, lineNo, header[i]));
+            throw InputError(fmt::format("{}:{}: column '{}' given twice", f, lineNo, shown(header[i])));
         for (int k = 0; k < 4; ++k)
           if (name == wanted[k]) col[k] = int(i);
       }
@@ -107,7 +118,7 @@ PointCloud readPointCloudCsv(const std::filesystem::path& file, const std::strin
         if (col[k] < 0) missing += (missing.empty() ? "'" : ", '") + wanted[k] + "'";
       if (!missing.empty()) {
         std::string have;
-        for (const auto& h : header) have += (have.empty() ? "" : ", ") + h;
+        for (const auto& h : header) have += (have.empty() ? "" : ", ") + shown(h);
         throw InputError(fmt::format("{}:{}: the header has no column {} (columns: {}; needed: x, y, z, {})",
                                      f, lineNo, missing, have, column));
       }
@@ -120,7 +131,7 @@ PointCloud readPointCloudCsv(const std::filesystem::path& file, const std::strin
     for (int k = 0; k < 4; ++k)
       if (!parseFinite(fields[std::size_t(col[k])], v[k]))
         throw InputError(fmt::format("{}:{}: column '{}': '{}' is not a finite number", f, lineNo,
-                                     header[std::size_t(col[k])], fields[std::size_t(col[k])]));
+                                     shown(header[std::size_t(col[k])]), shown(fields[std::size_t(col[k])])));
     cloud.points.push_back({v[0], v[1], v[2]});
     cloud.values.push_back(v[3]);
   }
@@ -177,14 +188,14 @@ class Tokens {
   double number(const std::string& what) {
     const std::string t = need(what);
     double v = 0;
-    if (!parseFinite(t, v)) fail(fmt::format("{}: '{}' is not a finite number", what, t));
+    if (!parseFinite(t, v)) fail(fmt::format("{}: '{}' is not a finite number", what, shown(t)));
     return v;
   }
   long integer(const std::string& what, long lo, long hi) {
     const std::string t = need(what);
     long v = 0;
     if (!parseLong(t, v) || v < lo || v > hi)
-      fail(fmt::format("{}: '{}' is not an integer in [{}, {}]", what, t, lo, hi));
+      fail(fmt::format("{}: '{}' is not an integer in [{}, {}]", what, shown(t), lo, hi));
     return v;
   }
   // A declared count of `perItem` numbers each: every number takes at least two bytes (a digit and a
@@ -194,7 +205,8 @@ class Tokens {
     const long most = (remaining + 1) / 2 / std::max(perItem, 1L);
     const std::string t = need(what);
     long v = 0;
-    if (!parseLong(t, v) || v < 0) fail(fmt::format("{}: '{}' is not a non-negative integer", what, t));
+    if (!parseLong(t, v) || v < 0)
+      fail(fmt::format("{}: '{}' is not a non-negative integer", what, shown(t)));
     if (v > most)
       fail(fmt::format("{}: {} is more than the rest of the file can hold (at most {})", what, v, most));
     return v;
@@ -284,7 +296,7 @@ SurfaceField readVtkSurface(const std::filesystem::path& file, const std::string
   if (!t.line(l)) t.fail("the file ends after the first line", 1);
   if (!t.line(l)) t.fail("the file ends after the title line", 2);
   if (trim(l) != "ASCII")
-    t.fail(fmt::format("'{}': only ASCII legacy VTK files are read (save as ASCII)", trim(l)), 3);
+    t.fail(fmt::format("'{}': only ASCII legacy VTK files are read (save as ASCII)", shown(trim(l))), 3);
 
   SurfaceField out;
   out.mesh.name = f;
@@ -299,10 +311,11 @@ SurfaceField readVtkSurface(const std::filesystem::path& file, const std::string
     const std::string kw = tok;
     if (kw == "DATASET") {
       const std::string type = t.need("DATASET type");
-      if (type != "POLYDATA") t.fail(fmt::format("DATASET {}: only POLYDATA (a surface) is read", type));
+      if (type != "POLYDATA")
+        t.fail(fmt::format("DATASET {}: only POLYDATA (a surface) is read", shown(type)));
       dataset = true;
     } else if (!dataset) {
-      t.fail(fmt::format("'{}' before DATASET POLYDATA", kw));
+      t.fail(fmt::format("'{}' before DATASET POLYDATA", shown(kw)));
     } else if (kw == "POINTS") {
       if (numPoints >= 0) t.fail("POINTS given twice");
       numPoints = t.count("POINTS count", 3);
@@ -340,7 +353,7 @@ SurfaceField readVtkSurface(const std::filesystem::path& file, const std::string
       auto take = [&](const std::string& arrayName, long comps, long tuples) {
         const bool want = arrayName == field;
         if (want && section == "CELL_DATA") inCells = arrayName;
-        if (section == "POINT_DATA") names.push_back(arrayName);
+        if (section == "POINT_DATA") names.push_back(shown(arrayName));
         if (want && section == "POINT_DATA") {
           if (comps != 1)
             t.fail(fmt::format("field '{}' has {} components; a scalar is needed", field, comps));
@@ -395,7 +408,7 @@ SurfaceField readVtkSurface(const std::filesystem::path& file, const std::string
     } else if (kw == "METADATA") {
       t.skipBlock();
     } else {
-      t.fail(fmt::format("unexpected '{}' (a POLYDATA keyword or attribute was expected)", kw));
+      t.fail(fmt::format("unexpected '{}' (a POLYDATA keyword or attribute was expected)", shown(kw)));
     }
   }
   if (!dataset) t.fail("no DATASET POLYDATA", 4);

@@ -38,7 +38,9 @@ std::vector<double> conservativeTrianglePressure(const InterfaceMesh& tri, const
     throw InputError(fmt::format("{}: {} values for {} points", source.mesh.name, source.values.size(),
                                  source.mesh.numPoints()));
   ProjectionOptions opt;
-  opt.mass = MassMatrix::Consistent;
+  // The lumped variant: the same C as the consistent one (which H = M_f⁻¹ C would only add a factorisation
+  // of the file's mass matrix to), and Hᵀ applied to the lumped loads diag(M_f 1) p_f is Cᵀ p_f.
+  opt.mass = MassMatrix::Lumped;
   opt.tolerance = tolerance;
   // C is integrated over the file's surface, and the triangles' shape functions bend at their edges inside
   // the file's faces: the quadrature cells are made about a quarter of a triangle edge (level 1 for a file
@@ -57,10 +59,12 @@ std::vector<double> conservativeTrianglePressure(const InterfaceMesh& tri, const
         u.x[2], u.distance));
   }
   const int n = tri.numPoints();
-  const Eigen::Map<const Eigen::VectorXd> pf(source.values.data(), Eigen::Index(source.values.size()));
-  // g = Hᵀ (M_f p_f) = Cᵀ p_f, and the area each node receives data on, w = Cᵀ 1.
-  const Eigen::VectorXd g = proj.coupling().transpose() * pf;
-  const Eigen::VectorXd w = proj.coupling().transpose() * Eigen::VectorXd::Ones(pf.size());
+  // g = Hᵀ (M_f p_f) = Cᵀ p_f, and the area each node receives data on, w = Cᵀ 1 = Hᵀ (M_f 1).
+  const Eigen::VectorXd& mf = proj.lumpedMass();
+  Eigen::VectorXd loads(mf.size()), g(n), w(n);
+  for (Eigen::Index j = 0; j < mf.size(); ++j) loads[j] = mf[j] * source.values[std::size_t(j)];
+  proj.applyTranspose(loads, g);
+  proj.applyTranspose(mf, w);
 
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd lumped = Eigen::VectorXd::Zero(n);

@@ -3,8 +3,9 @@
 // structure's triangles, set up and applied once at load time.
 //
 // With L2Projection from the triangles (source) to the file's surface (target), C_ji = ∫_file N_j φ_i(P(x))
-// (P: closest point on the triangles), the conservative transfer Hᵀ carries the file's consistent nodal
-// loads M_f p_f to the triangles' nodes: g_i = (Cᵀ p_f)_i = ∫_file p φ_i(P(x)) dΓ. The nodal pressure on the
+// (P: closest point on the triangles), the conservative transfer Hᵀ (lumped variant, H = diag(M_f 1)⁻¹ C)
+// carries the file's nodal loads diag(M_f 1) p_f to the triangles' nodes: g = Cᵀ p_f,
+// g_i = ∫_file p φ_i(P(x)) dΓ (p linear on the file's faces). The nodal pressure on the
 // triangles solves M_s p_s = g (their consistent mass matrix: a linear field is reproduced), and each
 // triangle takes the mean of its three nodes. Then Σ_e A_e p_e = 1ᵀ M_s p_s = Σ g = ∫_file p dΓ: the
 // integral of the pressure is carried over to round-off, so the resultant on a flat surface is exactly the

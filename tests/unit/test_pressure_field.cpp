@@ -410,6 +410,9 @@ TEST(PressureFieldFiles, CsvErrorsNameFileLineAndColumn) {
   EXPECT_TRUE(has(e, "cloud.csv:3: column 'y': '1e999'")) << e;
   e = csvError("x,y,z,p\n0,0,0\n");
   EXPECT_TRUE(has(e, "cloud.csv:2: 3 values, the header (line 1) has 4 columns")) << e;
+  e = csvError("x,y,z,p\n0,0,0,1\x01\xff\n");
+  EXPECT_TRUE(has(e, "cloud.csv:2: column 'p': '1\\x01\\xFF' is not a finite number"))
+      << e;  // bytes shown escaped
   e = csvError("x,y,z,p\n0,0,0,1x\n");
   EXPECT_TRUE(has(e, "cloud.csv:2: column 'p': '1x'")) << e;
   e = csvError("x,y,z,p,x\n");

@@ -14,6 +14,7 @@ namespace fsi::coupling {
 /// a surface), searched in growing shells around the query.
 class PointCloudSearch {
  public:
+  /// Keeps a reference to `points`: they must outlive the search.
   explicit PointCloudSearch(const std::vector<std::array<double, 3>>& points);
   /// Up to k nearest points no farther than `radius`, as (distance, index), nearest first.
   void nearest(const std::array<double, 3>& x, int k, double radius,

@@ -238,11 +238,22 @@ class Tokens {
 
 constexpr long kMaxIndex = 2147483646L;
 
-// One cell list, classic ("n size" then n lines "k i1 .. ik") or 5.1 ("n+1 m", OFFSETS, CONNECTIVITY).
-std::vector<std::vector<int>> readCells(Tokens& t, const std::string& kw, long numPoints) {
+// One cell list, classic ("n size" then n lines "k i1 .. ik") or 5.1 ("n+1 m", OFFSETS, CONNECTIVITY), as
+// flat arrays: cell c is nodes[offsets[c] .. offsets[c+1]). Flat, and grown only as numbers are read, so that
+// memory stays within a few times the file's size whatever the declared counts say.
+struct CellList {
+  std::vector<long> offsets{0};
+  std::vector<int> nodes;
+  std::size_t size() const { return offsets.size() - 1; }
+  long length(std::size_t c) const { return offsets[c + 1] - offsets[c]; }
+  const int* cell(std::size_t c) const { return nodes.data() + offsets[c]; }
+};
+
+CellList readCells(Tokens& t, const std::string& kw, long numPoints) {
   const long n = t.count(kw + " cell count", 1);
   const long size = t.count(kw + " size", 1);
-  std::vector<std::vector<int>> cells;
+  if (size > kMaxIndex) t.fail(fmt::format("{} size: {} is more than a surface may hold", kw, size));
+  CellList cells;
   auto index = [&](const std::string& what) {
     if (numPoints < 0) t.fail(kw + " before POINTS");
     return int(t.integer(what, 0, numPoints - 1));
@@ -251,30 +262,27 @@ std::vector<std::vector<int>> readCells(Tokens& t, const std::string& kw, long n
     t.need("OFFSETS");
     t.need("OFFSETS type");
     if (n < 1) t.fail(kw + ": the OFFSETS form needs a count ≥ 1 (cells + 1)");
-    std::vector<long> off(std::size_t(n), 0);
+    cells.offsets.clear();
     for (long i = 0; i < n; ++i) {
-      off[std::size_t(i)] = t.integer(kw + " offset", 0, size);
-      if (i == 0 && off[0] != 0) t.fail(kw + ": the first offset must be 0");
-      if (i > 0 && off[std::size_t(i)] < off[std::size_t(i - 1)]) t.fail(kw + ": offsets must not decrease");
+      const long o = t.integer(kw + " offset", 0, size);
+      if (i == 0 && o != 0) t.fail(kw + ": the first offset must be 0");
+      if (i > 0 && o < cells.offsets.back()) t.fail(kw + ": offsets must not decrease");
+      cells.offsets.push_back(o);
     }
-    if (off.back() != size)
-      t.fail(fmt::format("{}: the last offset is {}, the connectivity size {}", kw, off.back(), size));
+    if (cells.offsets.back() != size)
+      t.fail(
+          fmt::format("{}: the last offset is {}, the connectivity size {}", kw, cells.offsets.back(), size));
     if (t.need("CONNECTIVITY") != "CONNECTIVITY") t.fail(kw + ": CONNECTIVITY expected after the offsets");
     t.need("CONNECTIVITY type");
-    std::vector<int> conn(static_cast<std::size_t>(size));
-    for (long i = 0; i < size; ++i) conn[std::size_t(i)] = index(kw + " point index");
-    for (long c = 0; c + 1 < n; ++c)
-      cells.emplace_back(conn.begin() + off[std::size_t(c)], conn.begin() + off[std::size_t(c + 1)]);
+    for (long i = 0; i < size; ++i) cells.nodes.push_back(index(kw + " point index"));
     return cells;
   }
   long used = 0;
-  cells.reserve(std::size_t(n));
   for (long c = 0; c < n; ++c) {
     const long k = t.integer(kw + " cell size", 0, size - used - 1);
     used += k + 1;
-    std::vector<int> cell(static_cast<std::size_t>(k));
-    for (long i = 0; i < k; ++i) cell[std::size_t(i)] = index(kw + " point index");
-    cells.push_back(std::move(cell));
+    for (long i = 0; i < k; ++i) cells.nodes.push_back(index(kw + " point index"));
+    cells.offsets.push_back(long(cells.nodes.size()));
   }
   if (used != size) t.fail(fmt::format("{}: the cells hold {} numbers, the header says {}", kw, used, size));
   return cells;
@@ -326,20 +334,23 @@ SurfaceField readVtkSurface(const std::filesystem::path& file, const std::string
         for (double& c : p) c = t.number("POINTS coordinate");
     } else if (kw == "POLYGONS" || kw == "TRIANGLE_STRIPS" || kw == "VERTICES" || kw == "LINES") {
       const long at = t.tokenLine();
-      const auto cells = readCells(t, kw, numPoints);
+      const CellList cells = readCells(t, kw, numPoints);
       if (kw == "POLYGONS") {
-        for (const auto& c : cells) {
-          if (c.size() < 3)
-            t.fail(fmt::format("POLYGONS: a polygon with {} points (at least 3)", c.size()), at);
-          out.mesh.addFace(c);
+        for (std::size_t c = 0; c < cells.size(); ++c) {
+          if (cells.length(c) < 3)
+            t.fail(fmt::format("POLYGONS: a polygon with {} points (at least 3)", cells.length(c)), at);
+          out.mesh.faceNodes.insert(out.mesh.faceNodes.end(), cells.cell(c), cells.cell(c) + cells.length(c));
+          out.mesh.faceOffsets.push_back(int(out.mesh.faceNodes.size()));
         }
       } else if (kw == "TRIANGLE_STRIPS") {
         // Strip (v0, v1, v2, v3, ...) = triangles (v0 v1 v2), (v2 v1 v3), ...: every other one reversed so
         // that all keep the strip's orientation.
-        for (const auto& c : cells)
-          for (std::size_t i = 2; i < c.size(); ++i)
-            i % 2 == 0 ? out.mesh.addFace({c[i - 2], c[i - 1], c[i]})
-                       : out.mesh.addFace({c[i - 1], c[i - 2], c[i]});
+        for (std::size_t c = 0; c < cells.size(); ++c) {
+          const int* v = cells.cell(c);
+          for (long i = 2; i < cells.length(c); ++i)
+            i % 2 == 0 ? out.mesh.addFace({v[i - 2], v[i - 1], v[i]})
+                       : out.mesh.addFace({v[i - 1], v[i - 2], v[i]});
+        }
       }
     } else if (kw == "POINT_DATA" || kw == "CELL_DATA") {
       section = kw;

@@ -440,6 +440,10 @@ TEST(PressureFieldFiles, VtkErrorsNameFileAndLine) {
   EXPECT_TRUE(has(e, "surface.vtk:7: POINTS coordinate: 'nan' is not a finite number")) << e;
   e = vtkError(with("4 0 1 2 3", "4 0 1 2 7"));
   EXPECT_TRUE(has(e, "surface.vtk:9: POLYGONS point index: '7' is not an integer in [0, 3]")) << e;
+  e = vtkError(with("POLYGONS 1 5", "POLYGONS 100000000 5"));
+  EXPECT_TRUE(
+      has(e, "surface.vtk:8: POLYGONS cell count: 100000000 is more than the rest of the file can hold"))
+      << e;
   e = vtkError(with("POLYGONS 1 5", "POLYGONS 1 6"));
   EXPECT_TRUE(has(e, "surface.vtk:") && has(e, "POLYGONS")) << e;
   e = vtkError(with("POLYGONS 1 5\n4 0 1 2 3", "POLYGONS 1 3\n2 0 1"));

@@ -29,8 +29,9 @@ using structure::YamlMap;
 
 namespace {
 
-const std::vector<std::string> kKeys{"triangles", "file",     "field",    "quantity",  "dynamic_pressure",
-                                     "scale",     "follower", "function", "tolerance", "neighbours"};
+const std::vector<std::string> kKeys{"triangles",        "file",       "field",     "quantity",
+                                     "dynamic_pressure", "scale",      "follower",  "function",
+                                     "tolerance",        "neighbours", "projection"};
 
 // The triangles as an interface mesh over their own nodes (local numbering), in reference coordinates.
 InterfaceMesh localMesh(const structure::Model& model, const std::vector<int>& conn,
@@ -106,6 +107,11 @@ void build(const YamlMap& e, EffectContext& ctx) {
   if (ext != ".csv" && ext != ".vtk")
     e.failAt("file", fmt::format("'{}': the file must be a point cloud (.csv) or a legacy VTK surface (.vtk)",
                                  fileName));
+  bool conservative = true;
+  if (e.has("projection")) {
+    if (ext != ".vtk") e.failAt("projection", "only for a surface (.vtk); a point cloud is interpolated");
+    conservative = e.choice("projection", {"conservative", "consistent"}) == "conservative";
+  }
   int neighbours = 4;
   if (e.has("neighbours")) {
     if (ext != ".csv") e.failAt("neighbours", "only for a point cloud (.csv)");
@@ -116,11 +122,10 @@ void build(const YamlMap& e, EffectContext& ctx) {
   const std::filesystem::path path = ctx.sceneDir / fileName;
   std::vector<double> values;
   try {
-    values = ext == ".csv"
-                 ? fromCloud(path, field, mesh, tris, neighbours, tolerance, ctx.model)
-                 : conservativeTrianglePressure(mesh, readVtkSurface(path, field), tolerance, [&](int i) {
-                     return ctx.model.describeNode(global[std::size_t(i)]);
-                   });
+    values = ext == ".csv" ? fromCloud(path, field, mesh, tris, neighbours, tolerance, ctx.model)
+                           : (conservative ? conservativeTrianglePressure : consistentTrianglePressure)(
+                                 mesh, readVtkSurface(path, field), tolerance,
+                                 [&](int i) { return ctx.model.describeNode(global[std::size_t(i)]); });
   } catch (const InputError& err) {
     throw InputError(structure::locate(e.file(), e.node()["file"], e.childPath("file")) + ": " + err.what());
   }

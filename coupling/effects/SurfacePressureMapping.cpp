@@ -100,4 +100,45 @@ std::vector<double> conservativeTrianglePressure(const InterfaceMesh& tri, const
   return p;
 }
 
+std::vector<double> consistentTrianglePressure(const InterfaceMesh& tri, const SurfaceField& source,
+                                               double tolerance,
+                                               const std::function<std::string(int)>& describeNode) {
+  if (int(source.values.size()) != source.mesh.numPoints())
+    throw InputError(fmt::format("{}: {} values for {} points", source.mesh.name, source.values.size(),
+                                 source.mesh.numPoints()));
+  ProjectionOptions opt;
+  opt.mass = MassMatrix::Consistent;
+  opt.tolerance = tolerance;
+  // C is integrated over the triangles: about as many quadrature points as the file has nodes there, so
+  // that a finer file is sampled rather than skipped (linear fields are exact at any level).
+  const double ratio = tri.meanEdgeLength() / std::max(source.mesh.meanEdgeLength(), 1e-300);
+  opt.quadratureLevel = int(std::clamp(std::ceil(ratio), 1.0, 8.0));
+  const L2Projection proj(source.mesh, tri, opt);
+  const ProjectionReport& rep = proj.report();
+  if (rep.unmappedQuadraturePoints > 0) {
+    const UnmappedPoint& u = rep.firstUnmappedPoints.front();
+    throw InputError(fmt::format(
+        "{}: {} of {} quadrature points of the triangles are farther than the tolerance {:g} m from the "
+        "file's "
+        "surface (first at ({:g}, {:g}, {:g}), {:g} m away{}): the file must cover the whole triangle set "
+        "(nothing is extrapolated)",
+        source.mesh.name, rep.unmappedQuadraturePoints, rep.quadraturePoints, tolerance, u.x[0], u.x[1],
+        u.x[2], u.distance,
+        rep.firstUnmappedNodes.empty()
+            ? ""
+            : ", in the support of " + describeNode(rep.firstUnmappedNodes.front())));
+  }
+  if (rep.unmappedTargetNodes > 0)
+    throw InputError(fmt::format("{}: {} receives no data (it belongs to no triangle of positive area)",
+                                 source.mesh.name, describeNode(rep.firstUnmappedNodes.front())));
+  std::vector<double> ps(std::size_t(tri.numPoints()));
+  proj.apply(source.values.data(), ps.data());
+  std::vector<double> p(std::size_t(tri.numFaces()));
+  for (int f = 0; f < tri.numFaces(); ++f) {
+    const int* v = tri.face(f);
+    p[std::size_t(f)] = (ps[std::size_t(v[0])] + ps[std::size_t(v[1])] + ps[std::size_t(v[2])]) / 3.0;
+  }
+  return p;
+}
+
 }  // namespace fsi::coupling

@@ -28,6 +28,17 @@ std::vector<double> conservativeTrianglePressure(const InterfaceMesh& triangles,
                                                  double tolerance,
                                                  const std::function<std::string(int)>& describeNode);
 
+/// The CONSISTENT alternative (`projection: consistent`): L2Projection from the file's surface to the
+/// triangles, p_s = M_s⁻¹ C p_f with C_ij = ∫_triangles N_i φ_j(P(x)) (P: closest point on the file's
+/// surface), each triangle the mean of its nodes. Reproduces constant and linear fields exactly (a uniform
+/// pressure on a closed skin has no resultant, whatever the two surfaces' areas), and samples only where the
+/// triangles are, so the file may cover more than the set (a whole-wing surface for `wing/upper`); the
+/// integral of p is not conserved. Every quadrature point of the triangles must lie within `tolerance` of the
+/// file's surface; otherwise fsi::InputError names the first one.
+std::vector<double> consistentTrianglePressure(const InterfaceMesh& triangles, const SurfaceField& source,
+                                               double tolerance,
+                                               const std::function<std::string(int)>& describeNode);
+
 /// ∫ p dΓ of a field on its own surface, linear on every fan triangle (the integral the transfer keeps).
 double surfaceIntegral(const SurfaceField& field);
 

@@ -1,11 +1,11 @@
 // pressure_field: the pressure of an outer flow computed by another code (CFD, panel method), read from a
 // file and mapped ONCE at load time onto a set of triangles; each step then costs what the chordwise table
 // costs (one stored pressure per triangle, the PressureDistribution kernel). One-way FSI.
-//   file: X.vtk  a surface with connectivity (legacy ASCII VTK POLYDATA, the field as POINT_DATA): mapped
-//   with
-//                the coupling library's conservative projection (SurfacePressureMapping.hpp)
-//   file: X.csv  a point cloud (x, y, z and the field column): no areas, so a consistent inverse-distance
-//                interpolation at each triangle's reference centroid (PointCloudInterpolation.hpp)
+//   X.vtk  a surface with connectivity (legacy ASCII VTK POLYDATA, the field as POINT_DATA): mapped with the
+//          coupling library's conservative projection, or with `projection: consistent` its interpolating
+//          direction (SurfacePressureMapping.hpp)
+//   X.csv  a point cloud (x, y, z and the field column): no areas, so a consistent inverse-distance
+//          interpolation at each triangle's reference centroid (PointCloudInterpolation.hpp)
 // Sign: the flow is on the side the triangles' normals point to (an outward skin), as for
 // chordwise_pressure: a positive pressure pushes against the normal, into the body; suction pulls outward.
 #include <fmt/format.h>

@@ -9,6 +9,7 @@
 #include "coupling/CouplingCsv.hpp"
 #include "coupling/CouplingTiming.hpp"
 #include "coupling/StructureParticipant.hpp"
+#include "coupling/effects/CouplingEffects.hpp"
 #include "coupling/mapping/L2Projection.hpp"
 #include "coupling/scheme/CouplingOptions.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
@@ -190,6 +191,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     // uncaught (Foam::error, which derives from std::exception too, passes through unchanged).
     try {
       try {
+        fsi::coupling::registerCouplingEffects();  // pressure_field & co. in every scene the adapter loads
         structure_ = std::make_unique<fsi::coupling::StructureParticipant>(std::string(scene_));
       } catch (const Foam::error&) {
         throw;

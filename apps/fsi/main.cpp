@@ -25,6 +25,7 @@
 #include <map>
 #include <sstream>
 
+#include "coupling/effects/CouplingEffects.hpp"
 #include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
 #include "structure/io/MeshFileWriters.hpp"
@@ -270,6 +271,8 @@ int generateCommand(const fs::path& scenePath, const fs::path& outDir, const std
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The effects that live in the coupling library (pressure_field): every scene this program loads has them.
+  fsi::coupling::registerCouplingEffects();
   CLI::App app{"fsi: explicit membrane/cable structures and their coupling to flow solvers"};
   app.require_subcommand(1);
 

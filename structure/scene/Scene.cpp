@@ -90,7 +90,7 @@ Scene buildScene(const YamlMap& top, SceneSpec spec) {
   // Effects: only what is listed is ever computed. The element forces come first, then the loads.
   ElementDamping damping;
   std::vector<std::unique_ptr<Effect>> loads;
-  EffectContext effects{model, sets, scene.time.integrator, damping, loads};
+  EffectContext effects{model, sets, scene.time.integrator, damping, loads, spec.dir};
   buildEffects(top, spec.relaxation(), effects, scene.enabledEffects);
   addElementForces(scene, damping);
   for (auto& l : loads) scene.effects.push_back(std::move(l));

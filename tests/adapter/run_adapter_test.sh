@@ -4,6 +4,10 @@
 #   forces-viscous  : the same for the viscous force (option `viscous yes`)
 #   wrong-patch     : a misspelt patch name stops the solver with a non-zero exit and names the patch
 #   bad-scene       : a missing structure scene stops the solver and names the file
+#   pressure-field  : the adapter registers the coupling library's scene effects: the cavity bottom's inflating
+#                     `pressure` given instead as a `pressure_field` (a CSV cloud of the same constant
+#                     pressure, on the flow side of the normals: p = -0.2) gives the same coupled run to
+#                     round-off; a missing field file stops the run naming the scene entry and the file
 #   missing-library : without the library the interface boundary condition is a hard error
 #   no-coupling     : the boundary condition without the fsiCoupling object stops at the first mesh motion
 #   missing-bc      : U on the interface without movingWallVelocity is refused at start-up
@@ -171,6 +175,45 @@ PY
     for f in structure/results.h5 structure/results.xdmf structure/timing.json 0.25/uniform/fsiStructure.h5 0.5/uniform/fsiStructure.h5; do
       [ -s "$work/case/$f" ] || fail "missing output $f"
     done
+    ;;
+  pressure-field)
+    for v in pressure field missing; do
+      prepare "$work/$v"
+      set_entry "$work/$v" endTime 0.1
+    done
+    # The bottom is [0, 1] x [0, 0.1] at z = 0: a 21 x 5 cloud over it (ends included).
+    /usr/bin/python3 -c "
+print('x,y,z,p')
+for i in range(21):
+    for j in range(5): print(f'{i / 20},{0.1 * j / 4},0,-0.2')" > "$work/field/below.csv"
+    for v in field missing; do
+      sed -i 's|  pressure: {triangles: bottom, value: 0.2}.*|  pressure_field: {triangles: bottom, file: below.csv}|' \
+        "$work/$v/structure.yaml"
+      grep -q "pressure_field" "$work/$v/structure.yaml" || fail "could not write the pressure_field scene"
+    done
+    solve "$work/pressure"
+    [ $rc -eq 0 ] || fail "pimpleFoam exited with $rc (pressure)"
+    solve "$work/field"
+    [ $rc -eq 0 ] || fail "pimpleFoam exited with $rc (pressure_field)"
+    /usr/bin/python3 - "$work/pressure" "$work/field" <<'PY' || fail "pressure_field and pressure runs differ"
+import csv, sys
+def rows(d):
+    return list(csv.DictReader(l for l in open(d + "/structure/coupling.csv") if not l.startswith("#")))
+a, b = rows(sys.argv[1]), rows(sys.argv[2])
+assert len(a) == len(b) and len(a) >= 5, (len(a), len(b))
+worst = 0.0
+for ra, rb in zip(a, b):
+    for k in ("mid_z",):
+        x, y = float(ra[k]), float(rb[k])
+        worst = max(worst, abs(x - y) / max(abs(x), abs(y), 1e-300))
+print(f"{len(a)} windows, mid_z: largest relative difference {worst:.2e} (last {a[-1]['mid_z']} vs {b[-1]['mid_z']})")
+sys.exit(0 if worst < 1e-9 and float(a[-1]["mid_z"]) > 0 else 1)
+PY
+    solve "$work/missing"
+    [ $rc -ne 0 ] || fail "a missing field file must stop the run"
+    grep -q "structure.yaml:15:.*effects.pressure_field.file: .*below.csv: no such file" "$log" || fail "the message does not name the entry and file"
+    ! grep -q "terminate called\|uncaught\|what():" "$log" || fail "an uncaught exception"
+    echo "missing file: $(grep -m1 "no such file" "$log" | cut -c1-200)"
     ;;
   checkpoint)
     prepare "$work/case"

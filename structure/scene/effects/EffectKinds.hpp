@@ -5,6 +5,7 @@
 // EffectRegistry.cpp (docs/ARCHITECTURE.md, "How to add an effect"). Building runs once, at load time: no
 // per-step cost.
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@ struct EffectContext {
   CentralDifferenceSettings& integrator;        ///< mass damping lives in the integrator
   ElementDamping& elementDamping;               ///< read by the element forces
   std::vector<std::unique_ptr<Effect>>& loads;  ///< effects that add forces, in build order
+  std::filesystem::path sceneDir{};  ///< the scene file's folder: files an entry names are relative to it
 };
 
 struct EffectKind {
@@ -40,8 +42,18 @@ struct EffectKind {
   void (*build)(const YamlMap& entry, EffectContext& ctx) = nullptr;
 };
 
-/// Every effect kind, in the order they are built (which fixes the order forces are summed in).
+/// Every effect kind, in the order they are built (which fixes the order forces are summed in): the built-in
+/// kinds of EffectRegistry.cpp, then those added with registerEffectKind in the order they were added.
 const std::vector<EffectKind>& effectKinds();
+
+/// The extension point for effects built from code above the structure library (the dependency direction is
+/// structure <- coupling <- adapter/apps, so an effect that needs the coupling library's projection cannot be
+/// in the built-in table): appends `kind` after the built-in kinds, so every scene loaded afterwards accepts
+/// it, lists it among the valid names and suggests it. Called once at start-up, before any scene is loaded
+/// and not concurrently with loading (e.g. fsi::coupling::registerCouplingEffects() from `fsi` and the
+/// adapter). Registering the same name again with the same build function does nothing; with another one
+/// it throws std::logic_error (two kinds may not share a name).
+void registerEffectKind(const EffectKind& kind);
 
 /// Builds the `effects:` section of the top-level map `top`; appends the names of the effects built to
 /// `enabled`.

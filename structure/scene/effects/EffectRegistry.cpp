@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "structure/scene/effects/EffectKinds.hpp"
 
 namespace fsi::structure {
@@ -15,12 +17,33 @@ EffectKind chordwisePressureEffect();  // PressureTableEffect.cpp
 EffectKind lineDragEffect();           // DragEffects.cpp
 EffectKind bodyDragEffect();           // DragEffects.cpp
 
-const std::vector<EffectKind>& effectKinds() {
-  static const std::vector<EffectKind> kinds{
+namespace {
+
+// The table: the built-in kinds first, then the registered ones (registerEffectKind).
+std::vector<EffectKind>& table() {
+  static std::vector<EffectKind> kinds{
       massDampingEffect(),       stiffnessDampingEffect(), bulkViscosityEffect(),
       gravityEffect(),           pressureEffect(),         nodalForcesEffect(),
       chordwisePressureEffect(), lineDragEffect(),         bodyDragEffect()};
   return kinds;
+}
+
+}  // namespace
+
+const std::vector<EffectKind>& effectKinds() {
+  return table();
+}
+
+void registerEffectKind(const EffectKind& kind) {
+  if (kind.name.empty() || kind.build == nullptr)
+    throw std::logic_error("registerEffectKind: an effect kind needs a name and a build function");
+  for (const EffectKind& k : table())
+    if (k.name == kind.name) {
+      if (k.build == kind.build) return;
+      throw std::logic_error(
+          fmt::format("registerEffectKind: an effect kind '{}' exists already", kind.name));
+    }
+  table().push_back(kind);
 }
 
 namespace {

@@ -131,14 +131,7 @@ void build(const YamlMap& e, EffectContext& ctx) {
   }
   // The flow's pressure acts from the side the normal points to: −scale·q·p along the normal.
   for (double& v : values) v *= -scale * q;
-  const std::string label = e.node()["triangles"].IsScalar() ? e.node()["triangles"].Scalar() : e.path();
-  using structure::PressureDistribution;
-  if (follower)
-    ctx.loads.push_back(
-        std::make_unique<PressureDistribution>(label, std::move(conn), std::move(values), fn));
-  else
-    ctx.loads.push_back(std::make_unique<PressureDistribution>(
-        PressureDistribution::dead(label, std::move(conn), std::move(values), fn, ctx.model.nodes.X)));
+  structure::addTrianglePressure(e, ctx, std::move(conn), std::move(values), fn, follower);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
+#include "structure/effects/TimeFunction.hpp"
 #include "structure/elements/ElementKind.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/model/Model.hpp"
@@ -41,6 +42,12 @@ struct EffectKind {
   /// Reads one entry (calling entry.finish(keys)) and adds what it makes to the context.
   void (*build)(const YamlMap& entry, EffectContext& ctx) = nullptr;
 };
+
+/// Adds a pressure per triangle (values along the normal, times fn(t)) as a follower load, or as a dead load
+/// from the reference geometry; labelled with the entry's triangle selector. Shared by the pressure tables
+/// and the pressure fields mapped from files.
+void addTrianglePressure(const YamlMap& entry, EffectContext& ctx, std::vector<int> conn,
+                         std::vector<double> values, const TimeFunction& fn, bool follower);
 
 /// Every effect kind, in the order they are built (which fixes the order forces are summed in): the built-in
 /// kinds of EffectRegistry.cpp, then those added with registerEffectKind in the order they were added.

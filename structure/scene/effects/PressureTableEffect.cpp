@@ -47,6 +47,13 @@ void build(const YamlMap& e, EffectContext& ctx) {
     for (int k = 0; k < 3; ++k) conn.push_back(ctx.model.membranes.conn[3 * t + k]);
   // −q·Cp along the normal: the flow's pressure acts from the side the normal points to.
   auto values = chordwisePressure(ctx.model.nodes.X, conn, table, -q, le, axis, chord);
+  addTrianglePressure(e, ctx, std::move(conn), std::move(values), fn, follower);
+}
+
+}  // namespace
+
+void addTrianglePressure(const YamlMap& e, EffectContext& ctx, std::vector<int> conn,
+                         std::vector<double> values, const TimeFunction& fn, bool follower) {
   const std::string label = e.node()["triangles"].IsScalar() ? e.node()["triangles"].Scalar() : e.path();
   if (follower)
     ctx.loads.push_back(
@@ -55,8 +62,6 @@ void build(const YamlMap& e, EffectContext& ctx) {
     ctx.loads.push_back(std::make_unique<PressureDistribution>(
         PressureDistribution::dead(label, std::move(conn), std::move(values), fn, ctx.model.nodes.X)));
 }
-
-}  // namespace
 
 EffectKind chordwisePressureEffect() {
   return {"chordwise_pressure",

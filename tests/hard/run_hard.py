@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Hard starts of the parafoil canopy (docs/PARAFOIL.md, "Hard starts"): full load at once, slack lines at the
-start, very short cascade lines. Each mode runs `fsi run` on tests/hard/parafoil-*.yaml with --set variants and
+start, very short cascade lines. Each mode runs `fsi run` on the scenes of cases/structure/parafoil-inflation
+(scene.yaml: damped explicit dynamics, relaxation.yaml: kinetic DR) with --set variants and
 checks the exit code, the stop reason, that no result is NaN or infinite, and the final state (the static state
 with its global equilibrium, or the diagnosis text).
 
@@ -16,9 +17,10 @@ import sys
 import h5py
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-RELAX = os.path.join(HERE, "parafoil-relaxation.yaml")
-EXPLICIT = os.path.join(HERE, "parafoil-explicit.yaml")
+CASE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases", "structure",
+                    "parafoil-inflation")
+RELAX = os.path.join(CASE, "relaxation.yaml")
+EXPLICIT = os.path.join(CASE, "scene.yaml")
 # The rig (confluence point and toggles) moved 0.3 m up towards the canopy at once: every suspension and brake
 # line starts slack; the static state is the unmoved one, translated.
 SLACK = ("constraints=[{nodes: [wing/confluence, wing/toggle_left, wing/toggle_right], "

@@ -31,6 +31,17 @@ double CableKind::referenceStableDt(const Model& model) const {
   return dt;
 }
 
+std::optional<LimitingElement> CableKind::limitingElementAt(const Model& model, int node) const {
+  const Cables& C = model.cables;
+  std::optional<LimitingElement> best;
+  for (int e = 0; e < C.count; ++e) {
+    if (C.conn[2 * e] != node && C.conn[2 * e + 1] != node) continue;
+    const double dt = C.restLength[e] * C.invWaveSpeed[e];
+    if (!best || dt < best->stableDt) best = LimitingElement{e, dt, C.restLength[e]};
+  }
+  return best;
+}
+
 ScaledMass CableKind::scaleMass(Model& model, double need) const {
   ScaledMass r;
   Cables& C = model.cables;

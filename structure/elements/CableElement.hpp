@@ -21,6 +21,7 @@ class CableKind final : public ElementKind {
   std::unique_ptr<Effect> makeForces(const Model& model, const ElementDamping& damping) const override;
   void addLumpedMass(const Model& model, std::vector<double>& mass) const override;
   double referenceStableDt(const Model& model) const override;
+  std::optional<LimitingElement> limitingElementAt(const Model& model, int node) const override;
   ScaledMass scaleMass(Model& model, double need) const override;
   void addStiffnessBounds(const Model& model, const double* x, std::vector<double>& dofRow,
                           std::vector<double>& dofDiag) const override;

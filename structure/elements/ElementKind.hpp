@@ -58,6 +58,13 @@ struct ElementFieldBuffers {
   std::vector<std::vector<double>> arrays;
 };
 
+/// The element of a kind at a node with the smallest reference stable step (the stiffest for its mass).
+struct LimitingElement {
+  int element = -1;
+  double stableDt = 0;  ///< reference L_e/c_e [s]
+  double size = 0;      ///< its length (cables) [m]
+};
+
 class ElementKind {
  public:
   virtual ~ElementKind() = default;
@@ -110,6 +117,12 @@ class ElementKind {
   /// call.
   virtual void addFields(const Model& /*model*/, const double* /*x*/, const std::set<std::string>& /*wanted*/,
                          ElementFieldBuffers& /*buffers*/, std::vector<FieldView>& /*views*/) const {}
+  /// Among the kind's elements at `node`, the one with the smallest reference stable step (for diagnoses:
+  /// a short element makes its nodes stiff, heavy in dynamic relaxation, and limits the explicit step);
+  /// nullopt if the kind has none there or does not report it.
+  virtual std::optional<LimitingElement> limitingElementAt(const Model& /*model*/, int /*node*/) const {
+    return std::nullopt;
+  }
   /// The most strained element (or the first non-finite one); nullopt if the kind reports none.
   virtual std::optional<StrainedElement> mostStrained(const Model& /*model*/, const double* /*x*/) const {
     return std::nullopt;

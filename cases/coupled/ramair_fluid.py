@@ -560,7 +560,10 @@ def check_mesh(case):
     path = os.path.join(case, "log.checkMesh")
     with open(path) as f:
         text = f.read()
-    out = {"cells": int(re.search(r"^\s*cells:\s+(\d+)", text, re.M).group(1)),
+    cells = re.search(r"^\s*cells:\s+(\d+)", text, re.M)
+    if not cells:
+        raise InputError(f"{path}: no cell count: checkMesh did not finish")
+    out = {"cells": int(cells.group(1)),
            "ok": "Mesh OK." in text,
            "failed": [l.strip() for l in text.splitlines() if l.strip().startswith("***")]}
     m = re.search(r"Failed (\d+) mesh checks", text)
@@ -592,8 +595,10 @@ def summary(case):
            "CL": d["CL_helmbold"]}
     out["estimate"] = est
     coeff = os.path.join(case, "postProcessing", "forceCoeffs", "0", "coefficient.dat")
-    if os.path.exists(coeff):
-        header, rows = read_table(coeff)
+    header, rows = read_table(coeff) if os.path.exists(coeff) else (None, [])
+    if rows and not (header and all(k in header for k in ("Time", "Cd", "Cl", "Cs", "CmPitch"))):
+        raise InputError(f"{coeff}: no 'Time Cd Cs Cl ... CmPitch' header")
+    if rows:
         col = {name: i for i, name in enumerate(header)}
         hist = {k: [r[col[k]] for r in rows] for k in ("Cl", "Cd", "Cs", "CmPitch")}
         n = len(rows)

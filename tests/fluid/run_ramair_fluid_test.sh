@@ -10,6 +10,8 @@
 #          low-aspect-ratio estimate (inviscid: a 15 % thick section's slope exceeds 2 pi by ~10 %, the low
 #          Reynolds number (viscous decambering) lowers it to about half), and settled: CL and CD vary less
 #          than 5 % over the last fifth of the steps
+#   params an inflow angle of 4 deg turns U_inf, liftDir and dragDir; kOmegaSST writes k, omega, nut with
+#          wall functions; mesh_motion laplacian selects displacementLaplacian; locationInMesh is outside
 #   input  bad settings files stop Allrun with exit 2 and FILE:LINE before anything runs; a value that
 #          looks like a shell command is refused and never executed
 # Exit 77 (ctest: skipped) when Debian's OpenFOAM binaries are not installed.
@@ -81,5 +83,44 @@ for b in bad:
 sys.exit(1 if bad else 0)
 PY
 rc=$?
+
+# The parameters reach the dictionaries: an inflow angle turns U, the lift and drag directions and the
+# wake box; kOmegaSST adds k, omega, nut with wall functions; mesh_motion laplacian selects the motion solver.
+mkdir -p variant && printf 'speed 15\nangle 4\nmodel kOmegaSST\nnu 1.5e-5\nmesh_motion laplacian\n' > variant.settings
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write variant.settings constant/triSurface/wing.stl variant > /dev/null &&
+  /usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" fields variant || fail "the variant's dictionaries were not written"
+/usr/bin/python3 - <<'PY' || rc=1
+import json, math, re, sys
+r = json.load(open("variant/constant/fluidSettings.json"))
+a = math.radians(4)
+ctrl = open("variant/system/controlDict").read()
+def vec(name, text):
+    return [float(x) for x in re.search(name + r"\s+\(([^)]*)\)", text).group(1).split()]
+bad = []
+if max(abs(x - y) for x, y in zip(vec("liftDir", ctrl), (-math.sin(a), 0, math.cos(a)))) > 1e-8:
+    bad.append("liftDir is not normal to the inclined stream")
+if max(abs(x - y) for x, y in zip(vec("dragDir", ctrl), (math.cos(a), 0, math.sin(a)))) > 1e-8:
+    bad.append("dragDir is not along the inclined stream")
+u = vec("freestreamValue uniform", open("variant/0/U").read())
+if max(abs(x - 15 * y) for x, y in zip(u, (math.cos(a), 0, math.sin(a)))) > 1e-6:
+    bad.append(f"U_inf {u} is not 15 m/s at 4 deg")
+for f, wall in (("k", "kqRWallFunction"), ("omega", "omegaWallFunction"), ("nut", "nutUSpaldingWallFunction")):
+    try:
+        if wall not in open(f"variant/0/{f}").read():
+            bad.append(f"0/{f} has no {wall} on the wing")
+    except OSError:
+        bad.append(f"no 0/{f} for kOmegaSST")
+if "kOmegaSST" not in open("variant/constant/turbulenceProperties").read():
+    bad.append("turbulenceProperties does not select kOmegaSST")
+if "displacementLaplacian" not in open("variant/constant/dynamicMeshDict").read():
+    bad.append("mesh_motion laplacian did not select displacementLaplacian")
+loc, lo, hi = r["locationInMesh"], r["wing"]["min"], r["wing"]["max"]
+if all(lo[i] <= loc[i] <= hi[i] for i in range(3)):
+    bad.append("locationInMesh lies within the wing's bounds")
+for b in bad:
+    print("FAIL:", b)
+print("variant (angle 4, kOmegaSST, laplacian):", "ok" if not bad else "FAILED")
+sys.exit(1 if bad else 0)
+PY
 [ $rc -eq 0 ] && echo "PASS ramair-kt fluid" || echo "FAIL ramair-kt fluid"
 exit $rc

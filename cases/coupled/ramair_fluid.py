@@ -1,0 +1,680 @@
+#!/usr/bin/env python3
+"""The fluid side of a ram-air wing case: OpenFOAM v1912 dictionaries around the canopy's closed skin (the
+STL that `fsi generate` writes), from a small validated settings file; and the case's summary.json.
+
+Usage (run by the case's Allrun; /usr/bin/python3, standard library only):
+  ramair_fluid.py check SETTINGS              validate the settings file (exit 2 with FILE:LINE: message)
+  ramair_fluid.py generate-args SETTINGS      the `fsi generate --set` arguments of the fluid's skin, one a line
+  ramair_fluid.py write SETTINGS STL CASE     system/ and constant/ dictionaries (blockMesh, surface features,
+                                              snappyHexMesh, schemes, solution, controlDict with forceCoeffs,
+                                              decomposition, transport, turbulence, dynamic mesh) and
+                                              constant/fluidSettings.json (settings + derived numbers)
+  ramair_fluid.py fields CASE                 0/ (U, p, pointDisplacement; k, omega, nut for kOmegaSST): after
+                                              snappyHexMesh, from constant/fluidSettings.json
+  ramair_fluid.py summary CASE                summary.json from the logs, postProcessing/ and constant/polyMesh
+  ramair_fluid.py patch-area CASE PATCH       area of a boundary patch of constant/polyMesh (ASCII)
+
+Why a generator rather than static dictionaries edited with foamDictionary/sed: the dictionaries depend on the
+wing's size and position (domain, refinement boxes, locationInMesh outside the body, reference area), on
+derived numbers (time step from a Courant number, k and omega from the intensity) and on the model (which
+fields exist at all). Computing those in one place from numbers that were parsed and range-checked is simpler
+and safer than editing text: nothing from the settings file reaches a shell, and every value written is a
+number this script formatted or a word from a fixed list.
+"""
+import json
+import math
+import os
+import re
+import sys
+
+# ---------------------------------------------------------------------------------------------------------
+# Settings: `key value` per line, `#` starts a comment. Every key is known, every value checked.
+
+RESOLUTIONS = {
+    # wing surface (min max) level, feature-edge level, near-wing box level, wake box level; the background
+    # cell is one chord. Levels as in the feasibility trial (shared notes: 52 k / 235 k cells).
+    "coarse": {"surface": (4, 5), "features": 5, "near": 3, "wake": 2},
+    "medium": {"surface": (5, 6), "features": 6, "near": 4, "wake": 3},
+}
+
+# key: (kind, default, lower, upper, help); kind "float" (finite, lower <= v <= upper), "int", or a word list
+SETTINGS = {
+    "speed": ("float", None, 1e-3, 1e3, "free-stream speed [m/s]"),
+    "angle": ("float", 0.0, -30.0, 30.0, "inflow angle in the x-z plane [deg], added to the wing's incidence"),
+    "nu": ("float", 1.5e-5, 1e-7, 10.0, "kinematic viscosity [m^2/s]"),
+    "rho": ("float", 1.225, 1e-3, 1e4, "density for forces [kg/m^3] (p is kinematic)"),
+    "model": (["laminar", "kOmegaSST"], "laminar", None, None, "flow model"),
+    "resolution": (list(RESOLUTIONS), "coarse", None, None, "mesh resolution"),
+    "steps": ("int", 60, 1, 1000000, "time steps of the run"),
+    "courant": ("float", 4.0, 0.05, 50.0, "speed * deltaT / (finest cell at the wing)"),
+    "outer_correctors": ("int", 3, 1, 50, "PIMPLE outer correctors per step"),
+    "turbulence_intensity": ("float", 0.005, 1e-5, 0.5, "free-stream k = 1.5 (I U)^2 (kOmegaSST)"),
+    "viscosity_ratio": ("float", 10.0, 1e-3, 1e5, "free-stream nut/nu, sets omega = k/(ratio nu) (kOmegaSST)"),
+    "mesh_motion": (["none", "laplacian"], "none", None, None,
+                    "none: static mesh (rigid wing); laplacian: displacementLaplacian, inverse-distance diffusivity"),
+    "ranks": ("int", 2, 2, 64, "MPI ranks of Allrun.parallel (hierarchical (N 1 1))"),
+    "zero_lift_angle": ("float", -4.15, -20.0, 20.0,
+                        "the section's zero-lift angle [deg] for the lifting-line estimate (NACA 4415: -4.15, thin airfoil theory)"),
+    "stl_chordwise_points": ("int", 60, 0, 1000,
+                             "the fluid's skin: chordwise points of the wing generator (0: the scene's own)"),
+    "stl_span_divisions": ("int", 6, 0, 100, "the fluid's skin: span divisions per cell (0: the scene's own)"),
+    "upstream": ("float", 8.0, 2.0, 100.0, "domain: chords upstream of the wing"),
+    "downstream": ("float", 16.0, 3.0, 200.0, "domain: chords downstream of the wing"),
+    "lateral": ("float", 8.0, 2.0, 100.0, "domain: chords beyond the tips, above and below the wing"),
+}
+
+NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+
+class InputError(Exception):
+    pass
+
+
+def read_settings(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: cannot read the settings file: {e}")
+    values, where = {}, {}
+    for n, raw in enumerate(lines, 1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        parts = line.split()
+        loc = f"{path}:{n}"
+        if len(parts) != 2:
+            raise InputError(f"{loc}: expected 'key value', got '{line}'")
+        key, text = parts
+        if key not in SETTINGS:
+            near = sorted(SETTINGS, key=lambda k: _distance(k, key))[0]
+            raise InputError(f"{loc}: unknown key '{key}' (did you mean '{near}'? valid: {', '.join(SETTINGS)})")
+        if key in values:
+            raise InputError(f"{loc}: key '{key}' given twice (first at line {where[key]})")
+        kind, _, lo, hi, what = SETTINGS[key]
+        if isinstance(kind, list):
+            if text not in kind:
+                raise InputError(f"{loc}: {key} must be one of {', '.join(kind)}, not '{text}'")
+            value = text
+        else:
+            if not NUMBER.match(text):
+                raise InputError(f"{loc}: {key} ({what}) must be a number, not '{text}'")
+            value = float(text)
+            if kind == "int":
+                if value != int(value):
+                    raise InputError(f"{loc}: {key} ({what}) must be a whole number, not {text}")
+                value = int(value)
+            if not (math.isfinite(value) and lo <= value <= hi):
+                raise InputError(f"{loc}: {key} = {text} is outside [{lo:g}, {hi:g}] ({what})")
+        values[key], where[key] = value, n
+    for key, (kind, default, _, _, what) in SETTINGS.items():
+        if key not in values:
+            if default is None:
+                raise InputError(f"{path}: key '{key}' ({what}) is required")
+            values[key] = default
+    return values
+
+
+def _distance(a, b):
+    d = list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        prev, d[0] = d[0], i
+        for j, cb in enumerate(b, 1):
+            prev, d[j] = d[j], min(d[j] + 1, d[j - 1] + 1, prev + (ca != cb))
+    return d[len(b)]
+
+
+# ---------------------------------------------------------------------------------------------------------
+# The wing's skin (ASCII STL, as `fsi generate` writes it)
+
+
+def read_stl(path):
+    tris = []
+    try:
+        with open(path, encoding="ascii") as f:
+            verts = []
+            for n, line in enumerate(f, 1):
+                w = line.split()
+                if w and w[0] == "vertex":
+                    try:
+                        verts.append(tuple(float(v) for v in w[1:4]))
+                    except ValueError:
+                        raise InputError(f"{path}:{n}: bad vertex")
+                    if len(verts) == 3:
+                        tris.append(verts)
+                        verts = []
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: cannot read the STL (ASCII expected): {e}")
+    if not tris:
+        raise InputError(f"{path}: no triangles")
+    return tris
+
+
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _norm(a):
+    return math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+
+
+def wing_geometry(tris, lift_dir):
+    """Bounds, area, the area projected on the plane normal to the lift direction (a closed surface is seen
+    twice: half the sum of |n . e_lift| dA) and the centre section's chord line (incidence)."""
+    lo = [min(p[i] for t in tris for p in t) for i in range(3)]
+    hi = [max(p[i] for t in tris for p in t) for i in range(3)]
+    area = projected = 0.0
+    for a, b, c in tris:
+        n = _cross(_sub(b, a), _sub(c, a))
+        area += 0.5 * _norm(n)
+        projected += 0.25 * abs(n[0] * lift_dir[0] + n[1] * lift_dir[1] + n[2] * lift_dir[2])
+    # centre section: points within 1 % of the span of y = 0; trailing edge = largest x, leading edge = the
+    # point farthest from it
+    band = 0.01 * (hi[1] - lo[1])
+    centre = [p for t in tris for p in t if abs(p[1]) <= band]
+    if len(centre) < 3:
+        raise InputError("the STL has no points near the symmetry plane y = 0: is it a parafoil's skin?")
+    te = max(centre, key=lambda p: p[0])
+    le = max(centre, key=lambda p: _norm(_sub(p, te)))
+    chord = _norm(_sub(te, le))
+    incidence = math.degrees(math.atan2(le[2] - te[2], te[0] - le[0]))
+    return {"min": lo, "max": hi, "area": area, "projected_area": projected, "chord": chord,
+            "leading_edge": le, "trailing_edge": te, "incidence_deg": incidence}
+
+
+def derived(s, geo):
+    a = math.radians(s["angle"])
+    flow = (math.cos(a), 0.0, math.sin(a))
+    lift = (-math.sin(a), 0.0, math.cos(a))
+    res = RESOLUTIONS[s["resolution"]]
+    c = geo["chord"]
+    h0 = c  # background cell: one chord
+    h_wing = h0 / 2 ** res["surface"][1]
+    dt = s["courant"] * h_wing / s["speed"]
+    span = geo["max"][1] - geo["min"][1]
+    aref = geo["projected_area"]
+    ar = span * span / aref
+    # Helmbold's low-aspect-ratio lifting-line slope with a 2 pi section slope
+    a0 = 2 * math.pi
+    k = a0 / (math.pi * ar)
+    slope = a0 / (math.sqrt(1 + k * k) + k)
+    alpha_eff = geo["incidence_deg"] + s["angle"] - s["zero_lift_angle"]
+    le, te = geo["leading_edge"], geo["trailing_edge"]
+    d = {
+        "flow_dir": flow, "lift_dir": lift, "u_inf": [s["speed"] * v for v in flow],
+        "h0": h0, "h_wing": h_wing, "deltaT": dt, "endTime": dt * s["steps"],
+        "Aref": aref, "lRef": c, "span_projected": span, "aspect_ratio": ar,
+        "Re": s["speed"] * c / s["nu"], "q": 0.5 * s["rho"] * s["speed"] ** 2,
+        "CofR": [le[0] + 0.25 * (te[0] - le[0]), 0.0, le[2] + 0.25 * (te[2] - le[2])],
+        "helmbold_slope_per_rad": slope, "alpha_effective_deg": alpha_eff,
+        "CL_helmbold": slope * math.radians(alpha_eff),
+    }
+    if s["model"] == "kOmegaSST":
+        kin = 1.5 * (s["turbulence_intensity"] * s["speed"]) ** 2
+        d["k_inf"], d["omega_inf"] = kin, kin / (s["viscosity_ratio"] * s["nu"])
+    return d
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Dictionaries
+
+HEADER = "FoamFile {{ version 2.0; format ascii; class {cls}; object {obj}; }}\n// Written by ramair_fluid.py from {src}: edit the settings, not this file.\n"
+
+
+def v3(v):
+    return "(" + " ".join(f"{x:.9g}" for x in v) + ")"
+
+
+def write(path, cls, obj, src, body):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(HEADER.format(cls=cls, obj=obj, src=src) + body)
+
+
+def domain(geo, s, h0):
+    """The background box: whole background cells, `upstream`/`downstream`/`lateral` chords around the wing."""
+    c = geo["chord"]
+    lo, hi = geo["min"], geo["max"]
+    ext_lo = [lo[0] - s["upstream"] * c, lo[1] - s["lateral"] * c, lo[2] - s["lateral"] * c]
+    ext_hi = [hi[0] + s["downstream"] * c, hi[1] + s["lateral"] * c, hi[2] + s["lateral"] * c]
+    n = [max(1, math.ceil((ext_hi[i] - ext_lo[i]) / h0)) for i in range(3)]
+    # centre the whole cells on the requested box
+    mid = [(ext_hi[i] + ext_lo[i]) / 2 for i in range(3)]
+    bmin = [mid[i] - n[i] * h0 / 2 for i in range(3)]
+    bmax = [mid[i] + n[i] * h0 / 2 for i in range(3)]
+    return bmin, bmax, n
+
+
+def write_case(settings_path, stl_path, case):
+    s = read_settings(settings_path)
+    tris = read_stl(stl_path)
+    a = math.radians(s["angle"])
+    geo = wing_geometry(tris, (-math.sin(a), 0.0, math.cos(a)))
+    d = derived(s, geo)
+    res = RESOLUTIONS[s["resolution"]]
+    src = os.path.basename(settings_path)
+    c = geo["chord"]
+    lo, hi = geo["min"], geo["max"]
+    bmin, bmax, n = domain(geo, s, d["h0"])
+    sysd, cons = os.path.join(case, "system"), os.path.join(case, "constant")
+
+    verts = [(bmin[0], bmin[1], bmin[2]), (bmax[0], bmin[1], bmin[2]), (bmax[0], bmax[1], bmin[2]),
+             (bmin[0], bmax[1], bmin[2]), (bmin[0], bmin[1], bmax[2]), (bmax[0], bmin[1], bmax[2]),
+             (bmax[0], bmax[1], bmax[2]), (bmin[0], bmax[1], bmax[2])]
+    write(os.path.join(sysd, "blockMeshDict"), "dictionary", "blockMeshDict", src,
+          "// Background box around the wing, cells of one chord; every outer face is the far field.\n"
+          "scale 1;\nvertices\n(\n" + "".join(f"  {v3(v)}\n" for v in verts) + ");\n"
+          f"blocks ( hex (0 1 2 3 4 5 6 7) ({n[0]} {n[1]} {n[2]}) simpleGrading (1 1 1) );\n"
+          "boundary\n(\n  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }\n);\n")
+
+    write(os.path.join(sysd, "surfaceFeatureExtractDict"), "dictionary", "surfaceFeatureExtractDict", src,
+          "// Sharp edges of the skin (trailing edge, rib seams at the tips) for snappyHexMesh's feature snapping.\n"
+          "wing.stl\n{\n  extractionMethod extractFromSurface;\n"
+          "  extractFromSurfaceCoeffs { includedAngle 150; }\n"
+          "  subsetFeatures { nonManifoldEdges no; openEdges yes; }\n  writeObj no;\n}\n")
+
+    # Refinement boxes: near the wing (half a chord around it, 1.5 chords behind), the wake (7 chords behind,
+    # one chord around, along the flow).
+    near_lo = [lo[0] - 0.5 * c, lo[1] - 0.5 * c, lo[2] - 0.5 * c]
+    near_hi = [hi[0] + 1.5 * c, hi[1] + 0.5 * c, hi[2] + 0.5 * c]
+    wake_dz = 7 * c * math.tan(a)
+    wake_lo = [lo[0] - c, lo[1] - c, lo[2] - c + min(0.0, wake_dz)]
+    wake_hi = [hi[0] + 7 * c, hi[1] + c, hi[2] + c + max(0.0, wake_dz)]
+    # A point of the fluid: upstream of the wing, off every plane of background cell faces.
+    inside = [lo[0] - 2.0 * c + 0.1137 * d["h0"], 0.0733 * d["h0"], 0.5 * (lo[2] + hi[2]) + 0.1791 * d["h0"]]
+    if not all(bmin[i] < inside[i] < bmax[i] for i in range(3)) or lo[0] <= inside[0] <= hi[0]:
+        raise InputError("locationInMesh would not lie in the fluid: domain too small")
+    write(os.path.join(sysd, "snappyHexMeshDict"), "dictionary", "snappyHexMeshDict", src, f"""\
+castellatedMesh true;
+snap true;
+addLayers false;   // prism layers changed the answer in the feasibility trial (docs/RAMAIR.md)
+geometry
+{{
+  wing.stl {{ type triSurfaceMesh; name wing; }}
+  near {{ type searchableBox; min {v3(near_lo)}; max {v3(near_hi)}; }}
+  wake {{ type searchableBox; min {v3(wake_lo)}; max {v3(wake_hi)}; }}
+}}
+castellatedMeshControls
+{{
+  maxLocalCells 2000000; maxGlobalCells 4000000; minRefinementCells 10; maxLoadUnbalance 0.10;
+  nCellsBetweenLevels 3;
+  features ( {{ file "wing.eMesh"; level {res["features"]}; }} );
+  refinementSurfaces {{ wing {{ level ({res["surface"][0]} {res["surface"][1]}); patchInfo {{ type wall; }} }} }}
+  resolveFeatureAngle 30;
+  refinementRegions
+  {{
+    near {{ mode inside; levels ((1e15 {res["near"]})); }}
+    wake {{ mode inside; levels ((1e15 {res["wake"]})); }}
+  }}
+  // The fluid is outside the closed skin: this point lies upstream of the wing.
+  locationInMesh {v3(inside)};
+  allowFreeStandingZoneFaces true;
+}}
+snapControls
+{{
+  nSmoothPatch 3; tolerance 2.0; nSolveIter 100; nRelaxIter 5;
+  nFeatureSnapIter 10; implicitFeatureSnap false; explicitFeatureSnap true; multiRegionFeatureSnap false;
+}}
+addLayersControls
+{{
+  relativeSizes true; layers {{ }}; expansionRatio 1.2; finalLayerThickness 0.5; minThickness 0.1;
+  nGrow 0; featureAngle 60; nRelaxIter 3; nSmoothSurfaceNormals 1; nSmoothNormals 3; nSmoothThickness 10;
+  maxFaceThicknessRatio 0.5; maxThicknessToMedialRatio 0.3; minMedialAxisAngle 90; nBufferCellsNoExtrude 0;
+  nLayerIter 50;
+}}
+// maxBoundarySkewness 4 (not the usual 20): snapping leaves the two or so faces at the sharp trailing edge
+// that would exceed checkMesh's skewness limit (4) a little short of the edge instead of failing checkMesh
+// there (coarse mesh: skewness 4.21 -> 3.49, the same cells, the wing patch area unchanged to 1e-5). Those
+// faces are also where mesh motion first inverts cells (feasibility trial).
+meshQualityControls
+{{
+  maxNonOrtho 65; maxBoundarySkewness 4; maxInternalSkewness 4; maxConcave 80; minVol 1e-13;
+  minTetQuality 1e-15; minArea -1; minTwist 0.02; minDeterminant 0.001; minFaceWeight 0.05; minVolRatio 0.01;
+  minTriangleTwist -1; nSmoothScale 4; errorReduction 0.75;
+  relaxed {{ maxNonOrtho 75; }}
+}}
+mergeTolerance 1e-6;
+""")
+
+    rans = s["model"] == "kOmegaSST"
+    write(os.path.join(cons, "transportProperties"), "dictionary", "transportProperties", src,
+          f"transportModel Newtonian;\nnu {s['nu']:.9g};   // Re = {d['Re']:.4g} on the chord {c:.4g} m\n")
+    write(os.path.join(cons, "turbulenceProperties"), "dictionary", "turbulenceProperties", src,
+          "simulationType RAS;\nRAS { RASModel kOmegaSST; turbulence on; printCoeffs on; }\n" if rans
+          else "simulationType laminar;\n")
+    if s["mesh_motion"] == "laplacian":
+        motion = ("dynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolverLibs (\"libfvMotionSolvers.so\");\n"
+                  "motionSolver displacementLaplacian;\n"
+                  "// Diffusivity falling with the distance from the wing keeps the cells next to it rigid.\n"
+                  "displacementLaplacianCoeffs { diffusivity quadratic inverseDistance (wing); }\n")
+    else:
+        motion = "// Rigid wing: no mesh motion (mesh_motion laplacian in the settings moves it).\ndynamicFvMesh staticFvMesh;\n"
+    write(os.path.join(cons, "dynamicMeshDict"), "dictionary", "dynamicMeshDict", src, motion)
+
+    write(os.path.join(sysd, "fvSchemes"), "dictionary", "fvSchemes", src, f"""\
+ddtSchemes {{ default Euler; }}
+gradSchemes {{ default Gauss linear; grad(U) cellLimited Gauss linear 1; }}
+divSchemes
+{{
+  default none;
+  div(phi,U) bounded Gauss linearUpwind grad(U);
+  div(phi,k) bounded Gauss upwind;
+  div(phi,omega) bounded Gauss upwind;
+  div((nuEff*dev2(T(grad(U))))) Gauss linear;
+}}
+laplacianSchemes {{ default Gauss linear limited corrected 0.33; }}
+interpolationSchemes {{ default linear; }}
+snGradSchemes {{ default limited corrected 0.33; }}
+wallDist {{ method meshWave; }}
+""")
+    write(os.path.join(sysd, "fvSolution"), "dictionary", "fvSolution", src, f"""\
+solvers
+{{
+  p {{ solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0.05; }}
+  pFinal {{ $p; relTol 0; }}
+  "(pcorr|pcorrFinal)" {{ solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0; }}
+  "cellDisplacement.*" {{ solver GAMG; smoother GaussSeidel; tolerance 1e-8; relTol 0; }}
+  "(U|k|omega)" {{ solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0.1; }}
+  "(U|k|omega)Final" {{ solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0; }}
+}}
+// Pseudo-transient: large steps (Courant {s['courant']:g} at the wing), outer correctors under-relaxed, the
+// final corrector of each step not relaxed.
+PIMPLE
+{{
+  momentumPredictor yes; nOuterCorrectors {s['outer_correctors']}; nCorrectors 1; nNonOrthogonalCorrectors 1;
+  correctPhi no;
+}}
+relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }} }}
+""")
+
+    write(os.path.join(sysd, "controlDict"), "dictionary", "controlDict", src, f"""\
+application pimpleFoam;
+// deltaT = courant {s['courant']:g} * finest wing cell {d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {s['steps']} steps
+startFrom latestTime; startTime 0; stopAt endTime; endTime {d['endTime']:.9g}; deltaT {d['deltaT']:.9g};
+writeControl timeStep; writeInterval {s['steps']}; purgeWrite 0; writeFormat ascii; writePrecision 10;
+writeCompression off; timeFormat general; timePrecision 8; runTimeModifiable false; adjustTimeStep no;
+functions
+{{
+  // CL, CD about the free stream; reference area = the wing's area projected on the plane normal to the lift
+  // direction ({d['Aref']:.6g} m^2), reference length = the centre chord ({c:.6g} m), moments about its
+  // quarter chord.
+  forceCoeffs
+  {{
+    type forceCoeffs; libs ("libforces.so"); writeControl timeStep; writeInterval 1; log false;
+    patches (wing); rho rhoInf; rhoInf {s['rho']:.9g};
+    liftDir {v3(d['lift_dir'])}; dragDir {v3(d['flow_dir'])}; pitchAxis (0 1 0);
+    CofR {v3(d['CofR'])}; magUInf {s['speed']:.9g}; lRef {c:.9g}; Aref {d['Aref']:.9g};
+  }}
+  forces
+  {{
+    type forces; libs ("libforces.so"); writeControl timeStep; writeInterval 1; log false;
+    patches (wing); rho rhoInf; rhoInf {s['rho']:.9g}; CofR {v3(d['CofR'])};
+  }}
+}}
+""")
+    write(os.path.join(sysd, "decomposeParDict"), "dictionary", "decomposeParDict", src,
+          "// hierarchical, cut along x: Debian's scotch library is a stub that stops decomposePar.\n"
+          f"numberOfSubdomains {s['ranks']};\nmethod hierarchical;\n"
+          f"hierarchicalCoeffs {{ n ({s['ranks']} 1 1); delta 0.001; order xyz; }}\n")
+
+    record = {"settings": s, "settings_file": os.path.abspath(settings_path), "stl": os.path.abspath(stl_path),
+              "wing": geo, "derived": d, "domain": {"min": bmin, "max": bmax, "cells": n},
+              "locationInMesh": inside, "refinement": res}
+    with open(os.path.join(cons, "fluidSettings.json"), "w") as f:
+        json.dump(record, f, indent=1)
+    print(f"ramair_fluid: {s['model']} at {s['speed']:g} m/s, inflow angle {s['angle']:g} deg (wing incidence "
+          f"{geo['incidence_deg']:.3g} deg), Re {d['Re']:.4g}; {s['resolution']} mesh, background {n[0]}x{n[1]}x{n[2]}; "
+          f"deltaT {d['deltaT']:.4g} s x {s['steps']} steps; Aref {d['Aref']:.4g} m^2, AR {d['aspect_ratio']:.3g}")
+
+
+def write_fields(case):
+    rec = load_record(case)
+    s, d = rec["settings"], rec["derived"]
+    src = os.path.basename(rec["settings_file"])
+    z = os.path.join(case, "0")
+    u = v3(d["u_inf"])
+    write(os.path.join(z, "U"), "volVectorField", "U", src, f"""\
+dimensions [0 1 -1 0 0 0 0];
+internalField uniform {u};   // a uniform start: potentialFoam spiked at the sharp trailing edge
+boundaryField
+{{
+  farfield {{ type freestreamVelocity; freestreamValue uniform {u}; value uniform {u}; }}
+  wing {{ type movingWallVelocity; value uniform (0 0 0); }}   // = noSlip while the wing is rigid
+}}
+""")
+    write(os.path.join(z, "p"), "volScalarField", "p", src, """\
+dimensions [0 2 -2 0 0 0 0];   // kinematic
+internalField uniform 0;
+boundaryField
+{
+  farfield { type freestreamPressure; freestreamValue uniform 0; value uniform 0; }
+  wing { type zeroGradient; }
+}
+""")
+    write(os.path.join(z, "pointDisplacement"), "pointVectorField", "pointDisplacement", src, """\
+dimensions [0 1 0 0 0 0 0];
+internalField uniform (0 0 0);
+boundaryField
+{
+  wing { type fixedValue; value uniform (0 0 0); }   // rigid; the coupled run sets it (fsiInterfaceDisplacement)
+  farfield { type fixedValue; value uniform (0 0 0); }
+  "procBoundary.*" { type processor; value uniform (0 0 0); }
+}
+""")
+    if s["model"] == "kOmegaSST":
+        k, om = d["k_inf"], d["omega_inf"]
+        for name, val, wall in (("k", k, f"kqRWallFunction; value uniform {k:.9g}"),
+                                ("omega", om, f"omegaWallFunction; value uniform {om:.9g}")):
+            dims = "[0 2 -2 0 0 0 0]" if name == "k" else "[0 0 -1 0 0 0 0]"
+            write(os.path.join(z, name), "volScalarField", name, src, f"""\
+dimensions {dims};
+internalField uniform {val:.9g};
+boundaryField
+{{
+  farfield {{ type inletOutlet; inletValue uniform {val:.9g}; value uniform {val:.9g}; }}
+  wing {{ type {wall}; }}
+}}
+""")
+        write(os.path.join(z, "nut"), "volScalarField", "nut", src, """\
+dimensions [0 2 -1 0 0 0 0];
+internalField uniform 0;
+boundaryField
+{
+  farfield { type calculated; value uniform 0; }
+  wing { type nutUSpaldingWallFunction; value uniform 0; }   // no prism layers: y+ 75-3000 (docs/RAMAIR.md)
+}
+""")
+
+
+def load_record(case):
+    path = os.path.join(case, "constant", "fluidSettings.json")
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        raise InputError(f"{path}: {e} (run 'ramair_fluid.py write' first)")
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Reading the results
+
+
+def _foam_list(text, start):
+    """The list after the header of an ASCII polyMesh file: (count, text of the body)."""
+    m = re.compile(r"^(\d+)\s*\n\(", re.M).search(text, start)
+    if not m:
+        raise InputError("not an ASCII OpenFOAM list (writeFormat ascii expected)")
+    return int(m.group(1)), m.end()
+
+
+def patch_area(case, patch):
+    mesh = os.path.join(case, "constant", "polyMesh")
+    with open(os.path.join(mesh, "boundary")) as f:
+        b = f.read()
+    m = re.search(r"\b" + re.escape(patch) + r"\s*\{([^}]*)\}", b)
+    if not m:
+        raise InputError(f"{mesh}/boundary: no patch '{patch}'")
+    n_faces = int(re.search(r"nFaces\s+(\d+)", m.group(1)).group(1))
+    start = int(re.search(r"startFace\s+(\d+)", m.group(1)).group(1))
+    with open(os.path.join(mesh, "points")) as f:
+        t = f.read()
+    n, pos = _foam_list(t, t.index("}") if "FoamFile" in t else 0)
+    pts = re.findall(r"\(([^()]+)\)", t[pos:])[:n]
+    pts = [tuple(map(float, p.split())) for p in pts]
+    with open(os.path.join(mesh, "faces")) as f:
+        t = f.read()
+    n, pos = _foam_list(t, t.index("}") if "FoamFile" in t else 0)
+    faces = re.findall(r"\d+\(([^()]*)\)", t[pos:])
+    area = 0.0
+    for fi in range(start, start + n_faces):
+        ids = [int(i) for i in faces[fi].split()]
+        sx = sy = sz = 0.0
+        p0 = pts[ids[0]]
+        for i in range(1, len(ids) - 1):
+            cr = _cross(_sub(pts[ids[i]], p0), _sub(pts[ids[i + 1]], p0))
+            sx, sy, sz = sx + cr[0], sy + cr[1], sz + cr[2]
+        area += 0.5 * math.sqrt(sx * sx + sy * sy + sz * sz)
+    return area, n_faces
+
+
+def read_table(path):
+    rows, header = [], None
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                words = line[1:].split()
+                if words and words[0] == "Time":
+                    header = words
+                continue
+            w = line.replace("(", " ").replace(")", " ").split()
+            if w:
+                rows.append([float(x) for x in w])
+    return header, rows
+
+
+def check_mesh(case):
+    path = os.path.join(case, "log.checkMesh")
+    with open(path) as f:
+        text = f.read()
+    cells = re.search(r"^\s*cells:\s+(\d+)", text, re.M)
+    if not cells:
+        raise InputError(f"{path}: no cell count: checkMesh did not finish")
+    out = {"cells": int(cells.group(1)),
+           "ok": "Mesh OK." in text,
+           "failed": [l.strip() for l in text.splitlines() if l.strip().startswith("***")]}
+    m = re.search(r"Failed (\d+) mesh checks", text)
+    out["failed_checks"] = int(m.group(1)) if m else 0
+    m = re.search(r"Mesh non-orthogonality Max:\s*([\d.eE+-]+)", text)
+    out["max_non_orthogonality"] = float(m.group(1)) if m else None
+    m = re.search(r"Max skewness = ([\d.eE+-]+)", text)
+    out["max_skewness"] = float(m.group(1)) if m else None
+    # the only failure accepted: high skewness (the faces at the sharp trailing edge)
+    out["only_skewness"] = out["failed_checks"] == 1 and all("skew" in l for l in out["failed"])
+    return out
+
+
+def summary(case):
+    rec = load_record(case)
+    s, d = rec["settings"], rec["derived"]
+    out = {"case": os.path.basename(os.path.abspath(case)), "settings": s,
+           "reference": {"Aref_m2": d["Aref"], "Aref_is": "wing area projected on the plane normal to the lift direction",
+                         "lRef_m": d["lRef"], "CofR": d["CofR"], "aspect_ratio": d["aspect_ratio"],
+                         "span_projected_m": d["span_projected"], "Re": d["Re"], "q_Pa": d["q"]},
+           "mesh": check_mesh(case)}
+    area, nf = patch_area(case, "wing")
+    stl = rec["wing"]["area"]
+    out["mesh"].update({"wing_faces": nf, "wing_patch_area": area, "stl_area": stl,
+                        "area_relative_difference": (area - stl) / stl})
+    est = {"formula": "Helmbold: CL = a0 a / (sqrt(1 + (a0/(pi AR))^2) + a0/(pi AR)), a0 = 2 pi, "
+                      "a = incidence + inflow angle - zero-lift angle",
+           "incidence_deg": rec["wing"]["incidence_deg"], "alpha_effective_deg": d["alpha_effective_deg"],
+           "CL": d["CL_helmbold"]}
+    out["estimate"] = est
+    coeff = os.path.join(case, "postProcessing", "forceCoeffs", "0", "coefficient.dat")
+    header, rows = read_table(coeff) if os.path.exists(coeff) else (None, [])
+    if rows and not (header and all(k in header for k in ("Time", "Cd", "Cl", "Cs", "CmPitch"))):
+        raise InputError(f"{coeff}: no 'Time Cd Cs Cl ... CmPitch' header")
+    if rows:
+        col = {name: i for i, name in enumerate(header)}
+        hist = {k: [r[col[k]] for r in rows] for k in ("Cl", "Cd", "Cs", "CmPitch")}
+        n = len(rows)
+        tail = max(2, n // 5)
+
+        def spread(x):
+            last = x[-tail:]
+            return (max(last) - min(last)) / max(abs(x[-1]), 1e-30)
+
+        finite = all(math.isfinite(v) for k in hist for v in hist[k])
+        out["flow"] = {"steps": n, "time": rows[-1][0], "CL": hist["Cl"][-1], "CD": hist["Cd"][-1],
+                       "CS": hist["Cs"][-1], "CmPitch": hist["CmPitch"][-1],
+                       "L_over_D": hist["Cl"][-1] / hist["Cd"][-1] if hist["Cd"][-1] else None,
+                       "lift_N": hist["Cl"][-1] * d["q"] * d["Aref"], "drag_N": hist["Cd"][-1] * d["q"] * d["Aref"],
+                       "CL_spread_last_fifth": spread(hist["Cl"]), "CD_spread_last_fifth": spread(hist["Cd"]),
+                       "finite": finite, "CL_over_estimate": hist["Cl"][-1] / d["CL_helmbold"],
+                       "history": {"CL": hist["Cl"], "CD": hist["Cd"]}}
+        for log in ("log.pimpleFoam",):
+            p = os.path.join(case, log)
+            if os.path.exists(p):
+                with open(p) as f:
+                    times = [float(x) for x in re.findall(r"^ExecutionTime = ([\d.eE+-]+) s", f.read(), re.M)]
+                if len(times) > 2:
+                    out["flow"]["wall_s_per_step"] = (times[-1] - times[0]) / (len(times) - 1)
+                    out["flow"]["wall_s"] = times[-1]
+    with open(os.path.join(case, "summary.json"), "w") as f:
+        json.dump(out, f, indent=1)
+    m = out["mesh"]
+    print(f"mesh: {m['cells']} cells, checkMesh {'OK' if m['ok'] else 'failed ' + str(m['failed_checks'])}"
+          f"{' (only skewness: ' + str(m['max_skewness']) + ')' if m['only_skewness'] else ''}, max non-ortho "
+          f"{m['max_non_orthogonality']}; wing patch {area:.5g} m^2 vs STL {stl:.5g} m^2 "
+          f"({100 * m['area_relative_difference']:+.2f} %)")
+    if "flow" in out:
+        fl = out["flow"]
+        print(f"flow: {fl['steps']} steps, CL {fl['CL']:.4f}, CD {fl['CD']:.4f}, L/D {fl['L_over_D']:.2f} "
+              f"(spread over the last fifth: CL {100 * fl['CL_spread_last_fifth']:.2f} %, CD "
+              f"{100 * fl['CD_spread_last_fifth']:.2f} %); Helmbold CL {est['CL']:.3f} (AR {d['aspect_ratio']:.2f}, "
+              f"alpha {d['alpha_effective_deg']:.2f} deg from zero lift); "
+              f"{fl.get('wall_s_per_step', float('nan')):.3f} s per step")
+
+
+def main(argv):
+    cmds = {"generate-args": 1, "check": 1, "write": 3, "fields": 1, "summary": 1, "patch-area": 2}
+    if len(argv) < 2 or argv[1] not in cmds or len(argv) != 2 + cmds[argv[1]]:
+        print(__doc__.split("\n\n")[1], file=sys.stderr)
+        return 2
+    try:
+        cmd, args = argv[1], argv[2:]
+        if cmd == "check":
+            s = read_settings(args[0])
+            print(" ".join(f"{k}={v}" for k, v in s.items()))
+        elif cmd == "generate-args":
+            # The skin the fluid sees: the same generator, sampled finer than the structure (the coupling
+            # maps between the two). Only validated whole numbers are printed.
+            s = read_settings(args[0])
+            for key in ("chordwise_points", "span_divisions"):
+                if s["stl_" + key] > 0:
+                    print("--set")
+                    print(f"meshes.wing.generator.{key}={int(s['stl_' + key])}")
+        elif cmd == "write":
+            write_case(*args)
+        elif cmd == "fields":
+            write_fields(*args)
+        elif cmd == "summary":
+            summary(*args)
+        else:
+            area, n = patch_area(*args)
+            print(f"{area:.9g} {n}")
+    except InputError as e:
+        print(f"ramair_fluid: {e}", file=sys.stderr)
+        return 2
+    except OSError as e:
+        print(f"ramair_fluid: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

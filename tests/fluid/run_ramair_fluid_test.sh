@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# The fluid side of the ram-air wing (cases/coupled/ramair-kt, docs/RAMAIR.md), run the way a user does: the
+# case's tracked files copied out of the source tree, the build tree's fsi-env.sh sourced, ./Allrun with the
+# shipped laminar CI settings (coarse mesh, rigid wing). Checks summary.json:
+#   mesh   checkMesh reports "Mesh OK" (every test passed: snappyHexMesh's maxBoundarySkewness 4 keeps the
+#          faces at the sharp trailing edge under checkMesh's skewness limit); the fluid patch `wing` has the
+#          area of the STL it was snapped to within 1 %; the domain holds the fluid outside the wing
+#          (cells > 10000, patch not empty)
+#   flow   finite forces, lift > 0, CD > 0, CL within the plausibility band 0.35-1.2 x Helmbold's
+#          low-aspect-ratio estimate (inviscid: a 15 % thick section's slope exceeds 2 pi by ~10 %, the low
+#          Reynolds number (viscous decambering) lowers it to about half), and settled: CL and CD vary less
+#          than 5 % over the last fifth of the steps
+#   params an inflow angle of 4 deg turns U_inf, liftDir and dragDir; kOmegaSST writes k, omega, nut with
+#          wall functions; mesh_motion laplacian selects displacementLaplacian; locationInMesh is outside
+#   input  bad settings files stop Allrun with exit 2 and FILE:LINE before anything runs; a value that
+#          looks like a shell command is refused and never executed
+# Exit 77 (ctest: skipped) when Debian's OpenFOAM binaries are not installed.
+# Usage: run_ramair_fluid_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
+set -uo pipefail
+src=$1 build=$2 work=$3
+for app in blockMesh surfaceFeatureExtract snappyHexMesh checkMesh pimpleFoam; do
+  command -v "$app" > /dev/null || { echo "SKIP: $app not found (OpenFOAM is not installed)"; exit 77; }
+done
+fail() { echo "FAIL: $*"; exit 1; }
+rm -rf "$work" && mkdir -p "$work/ramair-kt" || exit 1
+case_files=$(git -C "$src" ls-files cases/coupled/ramair-kt)
+[ -n "$case_files" ] || fail "no tracked files in cases/coupled/ramair-kt"
+for f in $case_files; do cp "$src/$f" "$work/ramair-kt/"; done
+unset FSI_SHARE_DIR
+. "$build/share/fsi/fsi-env.sh"
+cd "$work/ramair-kt" || exit 1
+
+# Bad settings: refused with the file and line, exit 2, nothing made.
+bad() {
+  local text=$1 expect=$2
+  printf 'speed 10\n%s\n' "$text" > bad.settings
+  ./Allrun -settings bad.settings > bad.log 2>&1
+  local rc=$?
+  [ $rc -eq 2 ] || { cat bad.log; fail "'$text': exit $rc, not 2"; }
+  grep -qF "bad.settings:2:" bad.log || { cat bad.log; fail "'$text': no FILE:LINE in the message"; }
+  grep -qF -- "$expect" bad.log || { cat bad.log; fail "'$text': the message lacks '$expect'"; }
+  [ ! -e log.blockMesh ] && [ ! -d constant ] || fail "'$text': Allrun went on"
+}
+bad "sped 10" "did you mean 'speed'"
+bad "nu -1" "outside"
+bad "steps 2.5" "whole number"
+bad "model kEpsilon" "laminar, kOmegaSST"
+bad "angle nan" "must be a number"
+bad 'courant $(touch${IFS}/tmp/ramair-injected)' "must be a number"
+bad "courant 4 5" "expected 'key value'"
+[ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
+rm -f bad.settings bad.log
+
+start=$(date +%s)
+./Allrun || fail "Allrun failed"
+echo "Allrun: $(($(date +%s) - start)) s"
+/usr/bin/python3 - <<'PY'
+import json, math, sys
+s = json.load(open("summary.json"))
+m, f, e = s["mesh"], s["flow"], s["estimate"]
+bad = []
+print(f"cells {m['cells']}, checkMesh ok {m['ok']}, failed {m['failed']}, max skewness {m['max_skewness']}")
+print(f"wing patch area {m['wing_patch_area']:.5f} m^2, STL {m['stl_area']:.5f} m^2, {100 * m['area_relative_difference']:+.3f} %")
+print(f"CL {f['CL']:.4f}, CD {f['CD']:.4f}, estimate {e['CL']:.4f} (ratio {f['CL_over_estimate']:.3f}); "
+      f"spread over the last fifth: CL {100 * f['CL_spread_last_fifth']:.2f} %, CD {100 * f['CD_spread_last_fifth']:.2f} %; "
+      f"{f['steps']} steps, {f.get('wall_s_per_step', float('nan')):.3f} s per step")
+if not (m["ok"] and m["failed_checks"] == 0):
+    bad.append("checkMesh does not report the mesh OK")
+if m["cells"] < 10000 or m["wing_faces"] == 0:
+    bad.append("the mesh does not hold the fluid around the wing")
+if not abs(m["area_relative_difference"]) < 0.01:
+    bad.append("the wing patch's area differs from the STL's by 1 % or more")
+if not f["finite"]:
+    bad.append("non-finite force coefficients")
+if not (f["CL"] > 0 and f["CD"] > 0):
+    bad.append("no lift or no drag")
+if not (0.35 <= f["CL_over_estimate"] <= 1.2):
+    bad.append("CL outside 0.35-1.2 x the lifting-line estimate")
+if not (f["CL_spread_last_fifth"] < 0.05 and f["CD_spread_last_fifth"] < 0.05):
+    bad.append("CL or CD not settled (5 % over the last fifth of the steps)")
+for b in bad:
+    print("FAIL:", b)
+sys.exit(1 if bad else 0)
+PY
+rc=$?
+
+# The parameters reach the dictionaries: an inflow angle turns U, the lift and drag directions and the
+# wake box; kOmegaSST adds k, omega, nut with wall functions; mesh_motion laplacian selects the motion solver.
+mkdir -p variant && printf 'speed 15\nangle 4\nmodel kOmegaSST\nnu 1.5e-5\nmesh_motion laplacian\n' > variant.settings
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write variant.settings constant/triSurface/wing.stl variant > /dev/null &&
+  /usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" fields variant || fail "the variant's dictionaries were not written"
+/usr/bin/python3 - <<'PY' || rc=1
+import json, math, re, sys
+r = json.load(open("variant/constant/fluidSettings.json"))
+a = math.radians(4)
+ctrl = open("variant/system/controlDict").read()
+def vec(name, text):
+    return [float(x) for x in re.search(name + r"\s+\(([^)]*)\)", text).group(1).split()]
+bad = []
+if max(abs(x - y) for x, y in zip(vec("liftDir", ctrl), (-math.sin(a), 0, math.cos(a)))) > 1e-8:
+    bad.append("liftDir is not normal to the inclined stream")
+if max(abs(x - y) for x, y in zip(vec("dragDir", ctrl), (math.cos(a), 0, math.sin(a)))) > 1e-8:
+    bad.append("dragDir is not along the inclined stream")
+u = vec("freestreamValue uniform", open("variant/0/U").read())
+if max(abs(x - 15 * y) for x, y in zip(u, (math.cos(a), 0, math.sin(a)))) > 1e-6:
+    bad.append(f"U_inf {u} is not 15 m/s at 4 deg")
+for f, wall in (("k", "kqRWallFunction"), ("omega", "omegaWallFunction"), ("nut", "nutUSpaldingWallFunction")):
+    try:
+        if wall not in open(f"variant/0/{f}").read():
+            bad.append(f"0/{f} has no {wall} on the wing")
+    except OSError:
+        bad.append(f"no 0/{f} for kOmegaSST")
+if "kOmegaSST" not in open("variant/constant/turbulenceProperties").read():
+    bad.append("turbulenceProperties does not select kOmegaSST")
+if "displacementLaplacian" not in open("variant/constant/dynamicMeshDict").read():
+    bad.append("mesh_motion laplacian did not select displacementLaplacian")
+loc, lo, hi = r["locationInMesh"], r["wing"]["min"], r["wing"]["max"]
+if all(lo[i] <= loc[i] <= hi[i] for i in range(3)):
+    bad.append("locationInMesh lies within the wing's bounds")
+for b in bad:
+    print("FAIL:", b)
+print("variant (angle 4, kOmegaSST, laplacian):", "ok" if not bad else "FAILED")
+sys.exit(1 if bad else 0)
+PY
+[ $rc -eq 0 ] && echo "PASS ramair-kt fluid" || echo "FAIL ramair-kt fluid"
+exit $rc

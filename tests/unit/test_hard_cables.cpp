@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -112,6 +113,9 @@ probes:
     EXPECT_NEAR(r.probes.at("center_z"), expected, 1e-4 * d) << "t = " << end;
     EXPECT_GT(r.probes.at("tension"), 0.9 * P / 4) << "every cable taut again at t = " << end;
     EXPECT_LT(r.summary["stats"]["kinetic_energy"].get<double>(), 1e-9 * P * d) << "at rest at t = " << end;
+    std::printf("cable net at t = %g: centre %.7g m (exact %.7g), energy created %.2e, growth %.2e\n", end,
+                r.probes.at("center_z"), expected, r.summary["stats"]["energy_created_max"].get<double>(),
+                r.summary["stats"]["energy_growth_max"].get<double>());
   }
 }
 
@@ -170,6 +174,10 @@ time: {end: 10}
       2 * M_PI * std::sqrt(L / kG) * (1 + th2 / 16 + 11 * th2 * th2 / 3072 + 173 * th2 * th2 * th2 / 737280);
   EXPECT_NEAR(period / exact - 1, 0.0, 1e-4) << "period " << period << " s, exact " << exact << " s";
   EXPECT_NEAR(series / exact - 1, 0.0, 2e-3) << "the series to θ0⁶ is within its next term";
+  std::printf(
+      "pendulum: period %.8g s, exact %.8g s (%.2e), series to theta^6 %.8g s, energy %.2e, length "
+      "%.2e m, %ld steps\n",
+      period, exact, period / exact - 1, series, worstEnergy, worstLength, cd.steps());
   EXPECT_LT(worstEnergy, 1e-5);
   EXPECT_LT(worstLength, 3 * bobMass * kG * L / (E * A) * 1.5);
   EXPECT_LT(cd.energy().maxGrowth, 4.3);

@@ -24,6 +24,10 @@ namespace {
 // The same 20 × 2 squares on a strip 2 m long: 1 cm × 1 m cells cut into triangles of aspect ratio 100
 // (longest edge over smallest altitude).
 const std::string kSliverStrip = "{type: rectangle, size: [0.2, 2], center: [0.1, 1, 0], divisions: [20, 2]}";
+// The other orientation: 1 cm × 0.1 mm cells, the long edges along the bulge (across the strip), so the
+// smallest altitude (0.1 mm) sets a step 100 times smaller than the regular mesh's.
+const std::string kSliverAcross =
+    "{type: rectangle, size: [0.2, 2.0e-4], center: [0.1, 1.0e-4, 0], divisions: [20, 2]}";
 // Across the strip, one 10 µm element at the clamped edge x = 0, then 20 of 1 cm: sizes 1:1000 (the small one
 // is also a 1:1000 sliver, 10 µm × 1 cm).
 const std::string kSpreadStrip =
@@ -50,23 +54,39 @@ Outcome runStrip(const std::string& name, const std::string& yaml, const std::ve
 
 }  // namespace
 
-// Slivers: stable means the same static answer as the regular mesh (the y-invariant field is exact on both,
-// so the two must agree to the until-static tolerance) and the exact arc within 1e-3, reached at the step the
-// altitude allows (no smaller than on the regular mesh: the estimate uses the smallest altitude, not the
-// longest edge), with and without selective mass scaling (to twice that step: the static answer must not
-// change, the added mass is reported).
+// Slivers: stable means the same static answer as the regular mesh (the y-invariant field is exact on all of
+// them, so they must agree to the until-static tolerance) and the exact arc within 1e-3, reached at the step
+// the smallest altitude allows: with the long edges along the strip that is no smaller than on the regular
+// mesh (the estimate uses the altitude, not the longest edge); with the long edges across it, 100 times
+// smaller. With selective mass scaling (to twice the first one's step; to the regular mesh's step for the
+// second, 4,800 times the mass) the static answer must not change and the added mass is reported. (When every
+// element is a sliver, scaling them all alike slows every mode as much as it lengthens the step: the second
+// takes as many steps scaled as unscaled. Mass scaling pays where a few elements limit the step, as in the
+// size-spread test below.)
 TEST(HardMesh, SliversOfAspectRatio100ReachTheRegularMeshAnswer) {
   const double exact = arcDeflection(0.2, kStripC11t, 5000);
   const Outcome regular = runStrip("strip-regular", stripScene(kRegularStrip));
   const Outcome slivers = runStrip("strip-slivers", stripScene(kSliverStrip));
   const Outcome scaled = runStrip("strip-slivers-ms", stripScene(kSliverStrip),
                                   {"time.mass_scaling_min_dt=" + fsi::test::num(2 * slivers.lastDt)});
+  const Outcome across = runStrip("strip-across", stripScene(kSliverAcross));
+  // Scaling every element's density by s slows every mode by √s: the mass damping keeps its damping ratio
+  // with α/√s (at 1500 /s the scaled run is overdamped 70 times and creeps), and it needs √s times the
+  // simulated time (not more steps).
+  const double alphaScaled = 1500 * across.lastDt / regular.lastDt;
+  const Outcome acrossScaled = runStrip(
+      "strip-across-ms", stripScene(kSliverAcross),
+      {"time.mass_scaling_min_dt=" + fsi::test::num(regular.lastDt),
+       "effects.mass_damping.alpha=" + fsi::test::num(alphaScaled), "time.until_static.max_time=100"});
   EXPECT_NEAR(regular.deflection, exact, 1e-3 * exact);
-  EXPECT_NEAR(slivers.deflection, regular.deflection, 1e-5 * exact);
-  EXPECT_NEAR(scaled.deflection, regular.deflection, 1e-5 * exact);
+  for (const Outcome* o : {&slivers, &scaled, &across, &acrossScaled})
+    EXPECT_NEAR(o->deflection, regular.deflection, 1e-5 * exact);
   EXPECT_GT(slivers.lastDt, 0.5 * regular.lastDt);
   EXPECT_GT(scaled.addedMass, 0.5);
   EXPECT_GT(scaled.lastDt, 1.5 * slivers.lastDt);
+  EXPECT_LT(across.lastDt, 0.02 * regular.lastDt);
+  EXPECT_GT(acrossScaled.lastDt, 0.5 * regular.lastDt);
+  EXPECT_GT(acrossScaled.addedMass, 10.0);
 }
 
 // A 1:1000 spread of element sizes: without mass scaling the 10 µm element sets a step ~1000 times smaller

@@ -1,7 +1,7 @@
 // Hard cases for membranes (ctest label `hard`): a flat film loaded normal to itself (no initial normal
-// stiffness), a fully slack sheet, a wrinkled sheet in shear, a pressure ramp that overshoots, full pressure
-// on a crumpled start. Each test states what "stable" means for its case and asserts it against an
-// independent answer.
+// stiffness), a fully slack sheet, a wrinkled sheet in shear (driven smoothly and at once), a pressure ramp
+// that overshoots, full pressure on a crumpled start. Each test states what "stable" means for its case and
+// asserts it against an independent answer.
 #include <gtest/gtest.h>
 
 #include <cmath>

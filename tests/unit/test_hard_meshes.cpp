@@ -109,7 +109,8 @@ TEST(HardMesh, SizeSpreadOf1000ReachesTheAnswerWithAndWithoutMassScaling) {
 
 // The stable-step estimate on slivers: at safety 1 (the step the estimate allows, not less) the sliver strip
 // runs stably to the same answer; a fixed step 2.5 times the estimate is an instability, and it must stop
-// cleanly as `fsi run` does (exit code 3, a diagnosis naming the element, a finite last good state).
+// cleanly as `fsi run` does (exit code 3, a diagnosis naming the element and the remedy, a smaller
+// time.fixed_dt, and a finite last good state).
 TEST(HardMesh, StableStepEstimateHoldsOnSlivers) {
   const double exact = arcDeflection(0.2, kStripC11t, 5000);
   const Outcome full = runStrip("slivers-safety1", stripScene(kSliverStrip), {"time.safety=1"});
@@ -123,6 +124,7 @@ TEST(HardMesh, StableStepEstimateHoldsOnSlivers) {
   EXPECT_EQ(r.exitCode(), 3);
   EXPECT_EQ(r.reason, StopReason::Unstable);
   EXPECT_NE(r.diagnosis.find("triangle"), std::string::npos) << r.diagnosis;
+  EXPECT_NE(r.diagnosis.find("a smaller time.fixed_dt helps"), std::string::npos) << r.diagnosis;
   EXPECT_TRUE(std::filesystem::exists(r.stateFile)) << r.stateFile;
   EXPECT_TRUE(fsi::test::finiteState(*s.model));
 }

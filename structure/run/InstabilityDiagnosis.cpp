@@ -95,9 +95,10 @@ std::string diagnoseInstability(const Scene& scene, const CentralDifference& cd,
     s += fmt::format(
         "the energy of the step-to-step velocity change ({:.3g} J) is {:.3g} times the energy supplied to "
         "the structure ({:.3g} J), which a stable step cannot produce (limit {:g}): some mode is above the "
-        "stability limit; fastest {} (|v| = {:.3g} m/s). ",
-        E.kinetic - E.kineticProduct, E.growth(), E.supplied, kGrowthLimit, m.describeNode(fastest),
-        std::sqrt(vmax));
+        "stability limit; {} helps; fastest {} (|v| = {:.3g} m/s). ",
+        E.kinetic - E.kineticProduct, E.growth(), E.supplied, kGrowthLimit,
+        scene.time.integrator.fixedDt > 0 ? "a smaller time.fixed_dt" : "a lower time.safety",
+        m.describeNode(fastest), std::sqrt(vmax));
   } else if (const double c = created >= 0 ? created : E.createdLast; !(c <= scene.time.energyTolerance)) {
     s += fmt::format(
         "the elements hold {:.3g} J more strain energy than the work done on them, {:.3g} of the energy "

@@ -9,6 +9,9 @@ Usage (run by the case's Allrun; /usr/bin/python3, standard library only):
                                               snappyHexMesh, schemes, solution, controlDict with forceCoeffs,
                                               decomposition, transport, turbulence, dynamic mesh) and
                                               constant/fluidSettings.json (settings + derived numbers)
+  ramair_fluid.py structure SETTINGS SCENE OUT  the coupled run's structure scene (coupled yes): SCENE with the
+                                              ram pressure and line-drag wind of the settings, the skin as
+                                              the coupling interface
   ramair_fluid.py fields CASE                 0/ (U, p, pointDisplacement; k, omega, nut for kOmegaSST): after
                                               snappyHexMesh, from constant/fluidSettings.json
   ramair_fluid.py summary CASE                summary.json from the logs, postProcessing/ and constant/polyMesh
@@ -46,12 +49,33 @@ SETTINGS = {
     "model": (["laminar", "kOmegaSST"], "laminar", None, None, "flow model"),
     "resolution": (list(RESOLUTIONS), "coarse", None, None, "mesh resolution"),
     "steps": ("int", 60, 1, 1000000, "time steps of the run"),
+    "rigid_steps": ("int", 0, 0, 1000000,
+                    "coupled yes: steps of the rigid wing before the coupling starts; their flow is the coupled "
+                    "run's initial field (the impulsive start's pressure transient never reaches the canopy)"),
     "courant": ("float", 4.0, 0.05, 50.0, "speed * deltaT / (finest cell at the wing)"),
     "outer_correctors": ("int", 3, 1, 50, "PIMPLE outer correctors per step"),
     "turbulence_intensity": ("float", 0.005, 1e-5, 0.5, "free-stream k = 1.5 (I U)^2 (kOmegaSST)"),
     "viscosity_ratio": ("float", 10.0, 1e-3, 1e5, "free-stream nut/nu, sets omega = k/(ratio nu) (kOmegaSST)"),
-    "mesh_motion": (["none", "laplacian"], "none", None, None,
-                    "none: static mesh (rigid wing); laplacian: displacementLaplacian, inverse-distance diffusivity"),
+    "mesh_motion": (["auto", "none", "laplacian"], "auto", None, None,
+                    "none: static mesh (rigid wing); laplacian: displacementLaplacian, inverse-distance "
+                    "diffusivity; auto: laplacian when coupled, else none"),
+    "coupled": (["no", "yes"], "no", None, None,
+                "yes: the wing is structure.yaml's canopy, coupled to the flow through libfsiFoam (its scene "
+                "for the run: structure-coupled.yaml, written from structure.yaml and these settings)"),
+    "scheme": (["staggered", "implicit"], "implicit", None, None,
+               "coupling scheme: staggered (one pass per step) or implicit (iterated to the tolerance)"),
+    "structure_mode": (["equilibrium", "timeAccurate"], "equilibrium", None, None,
+                       "equilibrium: each fluid step relaxes the canopy towards its static state under the "
+                       "step's load (Kalro-Tezduyar; steady states); timeAccurate: its real motion"),
+    "equilibrium_steps": ("int", 100, 1, 1000000, "equilibrium: damped structural steps per fluid step"),
+    "load_relaxation": ("float", 1.0, 1e-3, 1.0,
+                        "the canopy gets w f + (1 - w) f_previous of the flow's load f (1: off)"),
+    "tolerance": ("float", 1e-3, 1e-12, 0.5, "implicit: relative interface-displacement residual of a step"),
+    "max_iterations": ("int", 20, 1, 1000, "implicit: iterations per step at most"),
+    "subcycles": ("int", 1, 1, 100000, "structural steps per fluid step at least"),
+    "stl_bulge": ("float", -1.0, -1.0, 0.5,
+                  "the fluid's skin: the generator's cell bulge (-1: the scene's; a rigid run may differ, a "
+                  "coupled one may not)"),
     "ranks": ("int", 2, 2, 64, "MPI ranks of Allrun.parallel (hierarchical (N 1 1))"),
     "zero_lift_angle": ("float", -4.15, -20.0, 20.0,
                         "the section's zero-lift angle [deg] for the lifting-line estimate (NACA 4415: -4.15, thin airfoil theory)"),
@@ -112,6 +136,16 @@ def read_settings(path):
             if default is None:
                 raise InputError(f"{path}: key '{key}' ({what}) is required")
             values[key] = default
+    # Keys that depend on each other
+    if values["mesh_motion"] == "auto":
+        values["mesh_motion"] = "laplacian" if values["coupled"] == "yes" else "none"
+    if values["coupled"] == "yes":
+        if values["mesh_motion"] != "laplacian":
+            raise InputError(f"{path}:{where['mesh_motion']}: mesh_motion none with coupled yes: the coupled wing "
+                             "moves the mesh (mesh_motion laplacian or auto)")
+        if values["stl_bulge"] >= 0:
+            raise InputError(f"{path}:{where['stl_bulge']}: stl_bulge with coupled yes: the fluid's skin must be "
+                             "the structure's own surface (remove stl_bulge)")
     return values
 
 
@@ -391,15 +425,39 @@ PIMPLE
 relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }} }}
 """)
 
-    write(os.path.join(sysd, "controlDict"), "dictionary", "controlDict", src, f"""\
+    coupling_libs, coupling = "", ""
+    if s["coupled"] == "yes":
+        coupling_libs = ("// The interface boundary condition (pointDisplacement on the wing) comes from the adapter.\n"
+                         "libs (\"libfsiFoam.so\");\n")
+        implicit = (f" tolerance {s['tolerance']:.9g}; maxIterations {s['max_iterations']};"
+                    if s["scheme"] == "implicit" else "")
+        mode = (f"structureMode equilibrium; equilibriumSteps {s['equilibrium_steps']};"
+                if s["structure_mode"] == "equilibrium" else
+                f"structureMode timeAccurate; subcycles {s['subcycles']};")
+        coupling = f"""\
+  // The canopy of structure-coupled.yaml (structure.yaml with this case's ram pressure, line-drag wind and
+  // coupling interface) on the wing patch; the fluid's pressure is gauge (freestreamPressure 0) like the ram
+  // pressure inside the skin, so the net load on the skin is outside minus inside.
+  fsi
+  {{
+    type fsiCoupling; libs ("libfsiFoam.so");
+    patches (wing); rho {s['rho']:.9g}; pRef 0; viscous yes;
+    scene "structure-coupled.yaml";
+    scheme {s['scheme']};{implicit}
+    {mode}
+    loadRelaxation {s['load_relaxation']:.9g};
+  }}
+"""
+    def control_dict(libs, fsi, steps, end):
+        return f"""\
 application pimpleFoam;
-// deltaT = courant {s['courant']:g} * finest wing cell {d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {s['steps']} steps
-startFrom latestTime; startTime 0; stopAt endTime; endTime {d['endTime']:.9g}; deltaT {d['deltaT']:.9g};
-writeControl timeStep; writeInterval {s['steps']}; purgeWrite 0; writeFormat ascii; writePrecision 10;
+// deltaT = courant {s['courant']:g} * finest wing cell {d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {steps} steps
+startFrom latestTime; startTime 0; stopAt endTime; endTime {end:.9g}; deltaT {d['deltaT']:.9g};
+writeControl timeStep; writeInterval {steps}; purgeWrite 0; writeFormat ascii; writePrecision 10;
 writeCompression off; timeFormat general; timePrecision 8; runTimeModifiable false; adjustTimeStep no;
-functions
+{libs}functions
 {{
-  // CL, CD about the free stream; reference area = the wing's area projected on the plane normal to the lift
+{fsi}  // CL, CD about the free stream; reference area = the wing's area projected on the plane normal to the lift
   // direction ({d['Aref']:.6g} m^2), reference length = the centre chord ({c:.6g} m), moments about its
   // quarter chord.
   forceCoeffs
@@ -415,7 +473,19 @@ functions
     patches (wing); rho rhoInf; rhoInf {s['rho']:.9g}; CofR {v3(d['CofR'])};
   }}
 }}
-""")
+"""
+
+    write(os.path.join(sysd, "controlDict"), "dictionary", "controlDict", src,
+          control_dict(coupling_libs, coupling, s["steps"], d["endTime"]))
+    if s["coupled"] == "yes" and s["rigid_steps"] > 0:
+        # The rigid start (Allrun swaps these in, runs, copies the last fields to 0/ and swaps them back).
+        nr = s["rigid_steps"]
+        write(os.path.join(sysd, "controlDict.rigid"), "dictionary", "controlDict", src,
+              "// The rigid wing's start-up run before the coupling (rigid_steps).\n"
+              + control_dict("", "", nr, nr * d["deltaT"]))
+        write(os.path.join(cons, "dynamicMeshDict.rigid"), "dictionary", "dynamicMeshDict", src,
+              "// The rigid wing's start-up run: no mesh motion.\ndynamicFvMesh staticFvMesh;\n")
+
     write(os.path.join(sysd, "decomposeParDict"), "dictionary", "decomposeParDict", src,
           "// hierarchical, cut along x: Debian's scotch library is a stub that stops decomposePar.\n"
           f"numberOfSubdomains {s['ranks']};\nmethod hierarchical;\n"
@@ -455,12 +525,15 @@ boundaryField
   wing { type zeroGradient; }
 }
 """)
+    wing = ("wing { type fsiInterfaceDisplacement; value uniform (0 0 0); }   // the structure's displacement"
+            if s["coupled"] == "yes" else
+            "wing { type fixedValue; value uniform (0 0 0); }   // rigid (coupled yes: fsiInterfaceDisplacement)")
     write(os.path.join(z, "pointDisplacement"), "pointVectorField", "pointDisplacement", src, """\
 dimensions [0 1 0 0 0 0 0];
 internalField uniform (0 0 0);
 boundaryField
 {
-  wing { type fixedValue; value uniform (0 0 0); }   // rigid; the coupled run sets it (fsiInterfaceDisplacement)
+  """ + wing + """
   farfield { type fixedValue; value uniform (0 0 0); }
   "procBoundary.*" { type processor; value uniform (0 0 0); }
 }
@@ -488,6 +561,50 @@ boundaryField
   wing { type nutUSpaldingWallFunction; value uniform 0; }   // no prism layers: y+ 75-3000 (docs/RAMAIR.md)
 }
 """)
+
+
+def write_structure(settings_path, scene_path, out_path):
+    """The coupled run's structure scene: structure.yaml with the ram pressure q = rho U^2 / 2 of these settings
+    inside the skin, the free stream as the line-drag wind and the skin as the coupling interface; the
+    structure-only `time` entries (end time, static-state test) are dropped: the fluid's time drives the run.
+    /usr/bin/python3's yaml (python3-yaml), safe loader only: the scene is data, nothing in it runs."""
+    import yaml  # Debian's python3-yaml (scripts/install-deps.sh)
+
+    s = read_settings(settings_path)
+    try:
+        with open(scene_path, encoding="utf-8") as f:
+            scene = yaml.safe_load(f)
+    except (OSError, UnicodeDecodeError, yaml.YAMLError) as e:
+        raise InputError(f"{scene_path}: cannot read the scene: {e}")
+    if not isinstance(scene, dict) or not isinstance(scene.get("effects"), dict):
+        raise InputError(f"{scene_path}: no 'effects' map: a coupled ram-air wing needs its internal pressure there")
+    eff = scene["effects"]
+    pressure = eff.get("pressure")
+    if not isinstance(pressure, dict) or pressure.get("triangles") != "wing/skin":
+        raise InputError(f"{scene_path}: effects.pressure must be the ram pressure inside the skin "
+                         "({triangles: wing/skin, value: ...}): its value is set from the settings' speed and rho")
+    a = math.radians(s["angle"])
+    q = 0.5 * s["rho"] * s["speed"] ** 2
+    pressure["value"] = float(f"{q:.9g}")
+    if isinstance(eff.get("line_drag"), dict):
+        eff["line_drag"]["wind"] = [float(f"{s['speed'] * v:.9g}") for v in (math.cos(a), 0.0, math.sin(a))]
+        eff["line_drag"]["density"] = float(f"{s['rho']:.9g}")
+    if "coupling" in scene:
+        raise InputError(f"{scene_path}: has a 'coupling' entry: the case sets it (interface: wing/skin)")
+    scene["coupling"] = {"interface": "wing/skin"}
+    time = scene.get("time")
+    if isinstance(time, dict):
+        kept = {k: v for k, v in time.items() if k in ("mass_scaling_min_dt",)}
+        if kept:
+            scene["time"] = kept
+        else:
+            del scene["time"]
+    with open(out_path, "w", encoding="utf-8") as f:
+        f.write(f"# Written by ramair_fluid.py from {os.path.basename(scene_path)} and "
+                f"{os.path.basename(settings_path)}: edit those, not this file.\n"
+                f"# Ram pressure q = {q:.6g} Pa ({s['speed']:g} m/s, rho {s['rho']:g}); wind = the free stream.\n")
+        yaml.safe_dump(scene, f, sort_keys=False, default_flow_style=None, width=110)
+    print(f"ramair_fluid: {out_path}: q = {q:.5g} Pa inside the skin, interface wing/skin")
 
 
 def load_record(case):
@@ -624,6 +741,8 @@ def summary(case):
                 if len(times) > 2:
                     out["flow"]["wall_s_per_step"] = (times[-1] - times[0]) / (len(times) - 1)
                     out["flow"]["wall_s"] = times[-1]
+    if s.get("coupled") == "yes":
+        out["coupled"] = coupled_summary(case, d)
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(out, f, indent=1)
     m = out["mesh"]
@@ -631,6 +750,18 @@ def summary(case):
           f"{' (only skewness: ' + str(m['max_skewness']) + ')' if m['only_skewness'] else ''}, max non-ortho "
           f"{m['max_non_orthogonality']}; wing patch {area:.5g} m^2 vs STL {stl:.5g} m^2 "
           f"({100 * m['area_relative_difference']:+.2f} %)")
+    if "coupled" in out and out["coupled"].get("windows"):
+        c = out["coupled"]
+        print(f"coupled: {c['windows']} windows, {c['iterations_mean']:.2f} iterations per window (at most "
+              f"{c['iterations_max']}, {c['not_converged']} not converged); interface force fluid vs structure "
+              f"{c['force_fluid_vs_structure_max_relative']:.1e}")
+        print(f"  lift {c['lift_N']:.2f} N, drag {c['drag_N']:.2f} N, side {c['side_N']:.3f} N: CL {c['CL']:.4f}, "
+              f"CD {c['CD']:.4f}, L/D {c['L_over_D']:.2f}; pitch {c['pitch_deg']:.2f} deg")
+        print(f"  anchor + toggles {v3(c['support_reaction_N'])} N vs applied {v3(c['applied_load_N'])} N "
+              f"(balance {c['equilibrium_relative']:.1e}); line drag {v3(c['line_drag_N'])} N")
+        print(f"  lines: max {c['line_tension_max_N']:.2f} N, left/right sums {c['lines_left_sum_N']:.2f} / "
+              f"{c['lines_right_sum_N']:.2f} N; skin stress mean {c['skin_stress_mean_Pa'] / 1e3:.1f} kPa, max "
+              f"{c['skin_stress_max_Pa'] / 1e3:.1f} kPa (ratio {c['stress_max_over_mean']:.2f})")
     if "flow" in out:
         fl = out["flow"]
         print(f"flow: {fl['steps']} steps, CL {fl['CL']:.4f}, CD {fl['CD']:.4f}, L/D {fl['L_over_D']:.2f} "
@@ -640,8 +771,62 @@ def summary(case):
               f"{fl.get('wall_s_per_step', float('nan')):.3f} s per step")
 
 
+def coupled_summary(case, d):
+    """The coupled run from structure/coupling.csv (one row per window: interface force on both sides, the
+    structure's probes): coupling statistics, the forces on the wing and on its anchor at the last window, the
+    balance of the two (static equilibrium: the supports hold everything applied), line tensions, stresses."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import summarize  # the coupled cases' reader of coupling.csv (same folder)
+
+    rows = summarize.coupling_rows(case)
+    if not rows:
+        return {"windows": 0}
+    last = {k: float(v) for k, v in rows[-1].items()}
+    q, aref = d["q"], d["Aref"]
+    lift_dir, flow_dir = d["lift_dir"], d["flow_dir"]
+
+    def vec(prefix, suffix=""):
+        return [last.get(f"{prefix}{c}{suffix}", float("nan")) for c in "xyz"]
+
+    def dot(a, b):
+        return sum(x * y for x, y in zip(a, b))
+
+    fluid = [last[f"F{c}_fluid"] for c in "xyz"]  # the flow's force on the wing (pressure + shear)
+    applied = vec("applied_load_")  # everything applied to the structure: flow, ram pressure, line drag
+    support = [a + b for a, b in zip(vec("anchor_force_"), vec("toggles_force_"))]
+    line_drag = [a - f for a, f in zip(applied, fluid)]  # the ram pressure on the closed skin sums to ~0
+    scale = max(_norm(applied), 1e-30)
+    iters = [int(r["iterations"]) for r in rows]
+    hist = {k: [float(r[k]) for r in rows] for k in ("time", "Fx_fluid", "Fz_fluid", "anchor_force_x",
+                                                      "anchor_force_z", "residual")}
+    lift = dot(fluid, lift_dir)
+    drag = dot(fluid, flow_dir)
+    smean, smax = last.get("skin_stress_mean", float("nan")), last.get("skin_stress_max", float("nan"))
+    return {
+        "windows": len(rows), "time": last["time"],
+        "iterations_mean": sum(iters) / len(iters), "iterations_max": max(iters),
+        "not_converged": sum(1 for r in rows if r["converged"] == "0"),
+        "force_fluid_vs_structure_max_relative": summarize.force_difference(rows),
+        "fluid_force_N": fluid, "lift_N": lift, "drag_N": drag, "side_N": fluid[1],
+        "CL": lift / (q * aref), "CD": drag / (q * aref), "L_over_D": lift / drag if drag else None,
+        "line_drag_N": line_drag, "applied_load_N": applied, "support_reaction_N": support,
+        "equilibrium_relative": _norm([a + b for a, b in zip(applied, support)]) / scale,
+        "anchor_moment_Nm": vec("anchor_moment_"),
+        "pitch_deg": last.get("chord_pitch_angle"),
+        "line_tension_max_N": last.get("line_tension_max"),
+        "lines_left_sum_N": last.get("lines_left_sum"), "lines_right_sum_N": last.get("lines_right_sum"),
+        "brake_tension_left_N": last.get("brake_tension_left"),
+        "brake_tension_right_N": last.get("brake_tension_right"),
+        "skin_stress_mean_Pa": smean, "skin_stress_max_Pa": smax,
+        "stress_max_over_mean": smax / smean if smean else None,
+        "enclosed_volume_m3": last.get("enclosed_volume"),
+        "history": hist,
+    }
+
+
 def main(argv):
-    cmds = {"generate-args": 1, "check": 1, "write": 3, "fields": 1, "summary": 1, "patch-area": 2}
+    cmds = {"generate-args": 1, "check": 1, "write": 3, "structure": 3, "fields": 1, "summary": 1,
+            "patch-area": 2}
     if len(argv) < 2 or argv[1] not in cmds or len(argv) != 2 + cmds[argv[1]]:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         return 2
@@ -658,8 +843,13 @@ def main(argv):
                 if s["stl_" + key] > 0:
                     print("--set")
                     print(f"meshes.wing.generator.{key}={int(s['stl_' + key])}")
+            if s["stl_bulge"] >= 0:
+                print("--set")
+                print(f"meshes.wing.generator.bulge={s['stl_bulge']:.9g}")
         elif cmd == "write":
             write_case(*args)
+        elif cmd == "structure":
+            write_structure(*args)
         elif cmd == "fields":
             write_fields(*args)
         elif cmd == "summary":

@@ -70,6 +70,10 @@ SETTINGS = {
     "equilibrium_steps": ("int", 100, 1, 1000000, "equilibrium: damped structural steps per fluid step"),
     "load_relaxation": ("float", 1.0, 1e-3, 1.0,
                         "the canopy gets w f + (1 - w) f_previous of the flow's load f (1: off)"),
+    "brake_right": ("float", 0.0, 0.0, 2.0,
+                    "coupled yes: the right toggle pulled down by this much [m] (0: held like the left one)"),
+    "brake_start": ("float", 0.0, 0.0, 1e6, "coupled yes: when the pull starts [s]"),
+    "brake_duration": ("float", 0.1, 1e-6, 1e6, "coupled yes: the pull's smooth ramp [s]"),
     "tolerance": ("float", 1e-3, 1e-12, 0.5, "implicit: relative interface-displacement residual of a step"),
     "max_iterations": ("int", 20, 1, 1000, "implicit: iterations per step at most"),
     "subcycles": ("int", 1, 1, 100000, "structural steps per fluid step at least"),
@@ -589,6 +593,20 @@ def write_structure(settings_path, scene_path, out_path):
     if isinstance(eff.get("line_drag"), dict):
         eff["line_drag"]["wind"] = [float(f"{s['speed'] * v:.9g}") for v in (math.cos(a), 0.0, math.sin(a))]
         eff["line_drag"]["density"] = float(f"{s['rho']:.9g}")
+    if s["brake_right"] > 0:
+        # The right toggle leaves the held points and is drawn down (-z) with a smooth ramp.
+        cons = scene.get("constraints")
+        held = next((c for c in cons if isinstance(c, dict) and c.get("fix") == "all"
+                     and isinstance(c.get("nodes"), list) and "wing/toggle_right" in c["nodes"]), None) \
+            if isinstance(cons, list) else None
+        if held is None:
+            raise InputError(f"{scene_path}: brake_right needs a constraint {{nodes: [..., wing/toggle_right], fix: all}} "
+                             "holding the right toggle")
+        held["nodes"] = [n for n in held["nodes"] if n != "wing/toggle_right"]
+        cons.append({"nodes": "wing/toggle_right",
+                     "prescribe": {"direction": [0, 0, -1], "amplitude": float(f"{s['brake_right']:.9g}"),
+                                   "function": {"type": "smooth_step", "start": float(f"{s['brake_start']:.9g}"),
+                                                "duration": float(f"{s['brake_duration']:.9g}")}}})
     if "coupling" in scene:
         raise InputError(f"{scene_path}: has a 'coupling' entry: the case sets it (interface: wing/skin)")
     scene["coupling"] = {"interface": "wing/skin"}
@@ -673,8 +691,8 @@ def read_table(path):
     return header, rows
 
 
-def check_mesh(case):
-    path = os.path.join(case, "log.checkMesh")
+def check_mesh(case, log="log.checkMesh"):
+    path = os.path.join(case, log)
     with open(path) as f:
         text = f.read()
     cells = re.search(r"^\s*cells:\s+(\d+)", text, re.M)
@@ -743,6 +761,8 @@ def summary(case):
                     out["flow"]["wall_s"] = times[-1]
     if s.get("coupled") == "yes":
         out["coupled"] = coupled_summary(case, d)
+        if os.path.exists(os.path.join(case, "log.checkMesh.final")):
+            out["mesh_final"] = check_mesh(case, "log.checkMesh.final")
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(out, f, indent=1)
     m = out["mesh"]
@@ -750,6 +770,10 @@ def summary(case):
           f"{' (only skewness: ' + str(m['max_skewness']) + ')' if m['only_skewness'] else ''}, max non-ortho "
           f"{m['max_non_orthogonality']}; wing patch {area:.5g} m^2 vs STL {stl:.5g} m^2 "
           f"({100 * m['area_relative_difference']:+.2f} %)")
+    if "mesh_final" in out:
+        mf = out["mesh_final"]
+        print(f"moved mesh at the end: checkMesh {'OK' if mf['ok'] else 'failed ' + str(mf['failed_checks'])}, "
+              f"max non-ortho {mf['max_non_orthogonality']}, max skewness {mf['max_skewness']}")
     if "coupled" in out and out["coupled"].get("windows"):
         c = out["coupled"]
         print(f"coupled: {c['windows']} windows, {c['iterations_mean']:.2f} iterations per window (at most "

@@ -167,6 +167,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   scene_ = fileName(sceneGiven).expand();
   if (!scene_.isAbsolute()) scene_ = time_.globalPath() / scene_;
   implicit_ = o.text("scheme") == "implicit";
+  equilibrium_ = fsi::coupling::structureMode(o) == fsi::coupling::StructureMode::Equilibrium;
   verifyCheckpoint_ = o.flag("verifyCheckpoint");
   const scalar dt = time_.deltaTValue();
   endTime_ = time_.endTime().value();
@@ -199,7 +200,11 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         FatalIOErrorInFunction(dict) << "fsiCoupling: structure scene " << scene_ << ": " << e.what()
                                      << exit(FatalIOError);
       }
-      structure_->setMinSubcycles(int(o.integer("subcycles")));
+      // subcycles is an option of time-accurate windows only, equilibriumSteps of equilibrium ones.
+      if (o.has("subcycles")) structure_->setMinSubcycles(int(o.integer("subcycles")));
+      if (equilibrium_)
+        structure_->setStructureMode(fsi::coupling::StructureMode::Equilibrium,
+                                     int(o.integer("equilibriumSteps")));
       // The fluid's load arrives as nodal forces (structureLoads: the conservative transfer Hᵀ f).
       structure_->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
       // Projection structure -> each fluid patch, on the reference geometry.
@@ -262,6 +267,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
           "structure";
       for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene()))
         header += ',' + name;
+      // Equilibrium mode: what each window's relaxation did, and how near equilibrium it ended.
+      if (equilibrium_) header += ",subcycles,kinetic_resets,equilibrium_residual";
       csv_ = std::make_unique<fsi::coupling::CouplingCsv>(
           std::string(outDir / "coupling.csv"), header,
           fresh ? std::nullopt
@@ -277,8 +284,14 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     }
 
     Info << "[fsi] structure " << sceneGiven.c_str() << ": " << structure_->numInterfaceNodes()
-         << " interface nodes, " << structure_->subcyclesFor(dt) << " structural steps per window of " << dt
-         << " s" << endl;
+         << " interface nodes, ";
+    if (equilibrium_)
+      Info << "equilibrium mode: " << o.integer("equilibriumSteps")
+           << " damped pseudo-steps per window (kinetic damping)";
+    else
+      Info << structure_->subcyclesFor(dt) << " structural steps per window of " << dt << " s";
+    if (o.real("loadRelaxation") < 1) Info << ", load relaxation " << o.real("loadRelaxation");
+    Info << endl;
     if (implicit_) {
       const std::string& acc = o.text("acceleration");
       Info << "[fsi] implicit coupling, " << acc.c_str() << " (omega " << o.real("omega");
@@ -415,10 +428,12 @@ void fsiCoupling::keepLastStableState() {
   structure_->writeState(std::string(time_.globalPath() / "structure" / "last_stable_state.h5"));
 }
 
-void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads, bool finished) {
+void fsiCoupling::logWindow(const vector& fluidTotal, bool finished) {
   if (!Pstream::master()) return;
+  // The load the structure got (with loadRelaxation < 1 not the fluid's load of this window).
+  const Eigen::VectorXd& applied = scheme_->loadsAtWindowStart();
   vector structureTotal = Zero;
-  for (std::size_t k = 0; k < loads.size(); ++k) structureTotal[k % 3] += loads[k];
+  for (Eigen::Index k = 0; k < applied.size(); ++k) structureTotal[direction(k % 3)] += applied[k];
   const auto& w = scheme_->lastWindow();
   Info << "fsiCoupling: t = " << time_.value() << " s, window " << w.window << ": " << w.iterations
        << " iteration(s)" << (w.converged || !implicit_ ? "" : " NOT CONVERGED") << ", interface force fluid "
@@ -436,6 +451,11 @@ void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>&
   for (direction k = 0; k < 3; ++k) add(fluidTotal[k]);
   for (direction k = 0; k < 3; ++k) add(structureTotal[k]);
   for (const auto& [name, value] : probes) add(value);
+  if (equilibrium_) {
+    const fsi::coupling::EquilibriumReport r = structure_->equilibriumReport();
+    row += ',' + std::to_string(r.steps) + ',' + std::to_string(r.resets);
+    add(structure_->staticResidualRatio());
+  }
   csv_->row(row);
   printProgress(fluidTotal, finished);
 }
@@ -533,7 +553,7 @@ bool fsiCoupling::execute() {
     if (!isDir(time_.timePath())) strayTimeDir_ = time_.timePath();
   } else {
     try {
-      logWindow(fluidTotal, loads, finished);
+      logWindow(fluidTotal, finished);
       // OpenFOAM writes the fields at the end only when it is one of its write times (and the implicit
       // scheme's spare step moved the end): write the last window now, fields and structure state together,
       // so a continued run can start from it.

@@ -428,12 +428,12 @@ void fsiCoupling::keepLastStableState() {
   structure_->writeState(std::string(time_.globalPath() / "structure" / "last_stable_state.h5"));
 }
 
-void fsiCoupling::logWindow(const vector& fluidTotal, bool finished) {
+void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads, bool finished) {
   if (!Pstream::master()) return;
-  // The load the structure got (with loadRelaxation < 1 not the fluid's load of this window).
-  const Eigen::VectorXd& applied = scheme_->loadsAtWindowStart();
+  // The fluid's load as transferred to the structure nodes (the transfer's conservation check; with
+  // loadRelaxation < 1 the structure gets the relaxed mix of it and the previous window's load).
   vector structureTotal = Zero;
-  for (Eigen::Index k = 0; k < applied.size(); ++k) structureTotal[direction(k % 3)] += applied[k];
+  for (std::size_t k = 0; k < loads.size(); ++k) structureTotal[k % 3] += loads[k];
   const auto& w = scheme_->lastWindow();
   Info << "fsiCoupling: t = " << time_.value() << " s, window " << w.window << ": " << w.iterations
        << " iteration(s)" << (w.converged || !implicit_ ? "" : " NOT CONVERGED") << ", interface force fluid "
@@ -553,7 +553,7 @@ bool fsiCoupling::execute() {
     if (!isDir(time_.timePath())) strayTimeDir_ = time_.timePath();
   } else {
     try {
-      logWindow(fluidTotal, finished);
+      logWindow(fluidTotal, loads, finished);
       // OpenFOAM writes the fields at the end only when it is one of its write times (and the implicit
       // scheme's spare step moved the end): write the last window now, fields and structure state together,
       // so a continued run can start from it.

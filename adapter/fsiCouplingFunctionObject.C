@@ -167,6 +167,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   scene_ = fileName(sceneGiven).expand();
   if (!scene_.isAbsolute()) scene_ = time_.globalPath() / scene_;
   implicit_ = o.text("scheme") == "implicit";
+  equilibrium_ = fsi::coupling::structureMode(o) == fsi::coupling::StructureMode::Equilibrium;
   verifyCheckpoint_ = o.flag("verifyCheckpoint");
   const scalar dt = time_.deltaTValue();
   endTime_ = time_.endTime().value();
@@ -199,7 +200,11 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         FatalIOErrorInFunction(dict) << "fsiCoupling: structure scene " << scene_ << ": " << e.what()
                                      << exit(FatalIOError);
       }
-      structure_->setMinSubcycles(int(o.integer("subcycles")));
+      // subcycles is an option of time-accurate windows only, equilibriumSteps of equilibrium ones.
+      if (o.has("subcycles")) structure_->setMinSubcycles(int(o.integer("subcycles")));
+      if (equilibrium_)
+        structure_->setStructureMode(fsi::coupling::StructureMode::Equilibrium,
+                                     int(o.integer("equilibriumSteps")));
       // The fluid's load arrives as nodal forces (structureLoads: the conservative transfer Hᵀ f).
       structure_->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
       // Projection structure -> each fluid patch, on the reference geometry.
@@ -262,6 +267,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
           "structure";
       for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene()))
         header += ',' + name;
+      // Equilibrium mode: what each window's relaxation did, and how near equilibrium it ended.
+      if (equilibrium_) header += ",subcycles,kinetic_resets,equilibrium_residual";
       csv_ = std::make_unique<fsi::coupling::CouplingCsv>(
           std::string(outDir / "coupling.csv"), header,
           fresh ? std::nullopt
@@ -277,8 +284,14 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     }
 
     Info << "[fsi] structure " << sceneGiven.c_str() << ": " << structure_->numInterfaceNodes()
-         << " interface nodes, " << structure_->subcyclesFor(dt) << " structural steps per window of " << dt
-         << " s" << endl;
+         << " interface nodes, ";
+    if (equilibrium_)
+      Info << "equilibrium mode: " << o.integer("equilibriumSteps")
+           << " damped pseudo-steps per window (kinetic damping)";
+    else
+      Info << structure_->subcyclesFor(dt) << " structural steps per window of " << dt << " s";
+    if (o.real("loadRelaxation") < 1) Info << ", load relaxation " << o.real("loadRelaxation");
+    Info << endl;
     if (implicit_) {
       const std::string& acc = o.text("acceleration");
       Info << "[fsi] implicit coupling, " << acc.c_str() << " (omega " << o.real("omega");
@@ -417,6 +430,8 @@ void fsiCoupling::keepLastStableState() {
 
 void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads, bool finished) {
   if (!Pstream::master()) return;
+  // The fluid's load as transferred to the structure nodes (the transfer's conservation check; with
+  // loadRelaxation < 1 the structure gets the relaxed mix of it and the previous window's load).
   vector structureTotal = Zero;
   for (std::size_t k = 0; k < loads.size(); ++k) structureTotal[k % 3] += loads[k];
   const auto& w = scheme_->lastWindow();
@@ -436,6 +451,11 @@ void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>&
   for (direction k = 0; k < 3; ++k) add(fluidTotal[k]);
   for (direction k = 0; k < 3; ++k) add(structureTotal[k]);
   for (const auto& [name, value] : probes) add(value);
+  if (equilibrium_) {
+    const fsi::coupling::EquilibriumReport r = structure_->equilibriumReport();
+    row += ',' + std::to_string(r.steps) + ',' + std::to_string(r.resets);
+    add(structure_->staticResidualRatio());
+  }
   csv_->row(row);
   printProgress(fluidTotal, finished);
 }

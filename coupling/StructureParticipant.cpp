@@ -77,6 +77,7 @@ class StructureParticipant::Substeps final : public StructureStepper {
   }
   void saveCheckpoint() override { cd_.checkpoint(checkpoint_); }
   void restoreCheckpoint() override { cd_.restore(checkpoint_); }
+  const structure::StateSnapshot& checkpointState() const { return checkpoint_; }
 
   double windowEnd = 0;            ///< end of the window being solved
   bool lastStepMonitored = false;  ///< the last structural step evaluated the strain energy
@@ -86,6 +87,46 @@ class StructureParticipant::Substeps final : public StructureStepper {
   structure::CentralDifference& cd_;
   structure::InterfaceLoad& load_;
   structure::StateSnapshot checkpoint_;  ///< start of the window: the last stable state
+};
+
+// Equilibrium mode: the CentralDifference takes steps of its own stable size under the frozen window load,
+// whatever the fluid's Δt; kinetic damping and the window's end are EquilibriumStructure's decisions.
+class StructureParticipant::Relaxation final : public RelaxationStepper {
+ public:
+  Relaxation(const Scene& scene, structure::CentralDifference& cd, structure::InterfaceLoad& load,
+             Substeps& substeps)
+      : scene_(scene), cd_(cd), load_(load), substeps_(substeps) {}
+
+  void freezeLoads(const Eigen::VectorXd& loads) override {
+    load_.values.assign(loads.data(), loads.data() + loads.size());
+  }
+  double relaxStep() override {
+    // A limit far ahead: the integrator takes its own stable step (it lands on a limit in equal steps; 1024
+    // of them change the step by less than 0.1 %).
+    const double limit = cd_.time() + 1024.0 * substeps_.stableTimeStep();
+    substeps_.lastStepMonitored = false;  // recordHistory() evaluates the strain energy itself
+    if (!cd_.step(limit, false))
+      throw StructureUnstable(structure::diagnoseInstability(scene_, cd_, substeps_.checkpointState().step,
+                                                             substeps_.checkpointState().time,
+                                                             /*nonFinite=*/true));
+    return cd_.energy().kinetic;
+  }
+  void stopMotion() override { cd_.stopMotion(); }
+  void endWindow(double t, const Eigen::VectorXd& velocity) override {
+    cd_.setTime(t);
+    velocity_ = velocity;
+  }
+  Eigen::VectorXd interfaceDisplacement() const override { return substeps_.interfaceDisplacement(); }
+  void saveCheckpoint() override { substeps_.saveCheckpoint(); }
+  void restoreCheckpoint() override { substeps_.restoreCheckpoint(); }
+  const Eigen::VectorXd& velocity() const { return velocity_; }
+
+ private:
+  const Scene& scene_;
+  structure::CentralDifference& cd_;
+  structure::InterfaceLoad& load_;
+  Substeps& substeps_;
+  Eigen::VectorXd velocity_;
 };
 
 StructureParticipant::StructureParticipant(Scene scene) : scene_(std::make_unique<Scene>(std::move(scene))) {
@@ -169,6 +210,39 @@ void StructureParticipant::setMinSubcycles(int n) {
   makeSubcycling();
 }
 
+void StructureParticipant::setStructureMode(StructureMode mode, int equilibriumSteps) {
+  if (mode == StructureMode::TimeAccurate) {
+    equilibrium_.reset();
+    relaxation_.reset();
+    return;
+  }
+  EquilibriumOptions o;
+  o.steps = equilibriumSteps;
+  relaxation_ = std::make_unique<Relaxation>(*scene_, *cd_, *load_, *stepper_);
+  equilibrium_ = std::make_unique<EquilibriumStructure>(*relaxation_, o);  // checks the step count
+}
+
+EquilibriumReport StructureParticipant::equilibriumReport() const {
+  return equilibrium_ ? equilibrium_->lastReport() : EquilibriumReport{};
+}
+
+double StructureParticipant::staticResidualRatio() {
+  cd_->evaluateForces(false);
+  const structure::Nodes& N = scene_->model->nodes;
+  double res = 0, reaction = 0, applied = 0;
+  for (std::size_t d = 0; d < N.x.size(); ++d) {
+    const double R = N.fext[d] - N.fint[d];
+    applied = std::max(applied, std::abs(N.fext[d]));
+    // A constrained dof has no inverse mass (as for the dynamic relaxation's free-dof mask).
+    if (N.invMassDof[d] != 0.0)
+      res = std::max(res, std::abs(R));
+    else
+      reaction = std::max(reaction, std::abs(R));
+  }
+  const double scale = reaction > 0 ? reaction : (applied > 0 ? applied : 1.0);
+  return res / scale;
+}
+
 void StructureParticipant::advance(double dt) {
   advanceTo(cd_->time() + dt);
 }
@@ -182,6 +256,14 @@ void StructureParticipant::advanceTo(double t1) {
   // The stable step of the window's start state decides the substep count, the same for every coupling
   // iteration of the window (it starts from the same checkpoint). The next step evaluates its forces anew.
   cd_->evaluateForces(false);
+  if (equilibrium_) {
+    // Time functions of the scene (ramps, prescribed motions) are evaluated from the window's end on: the
+    // clock runs on through the pseudo-steps and is set back to t1 at the end.
+    cd_->setTime(t1);
+    equilibrium_->solve(t0, t1 - t0, loadStart_, loadEnd_);
+    windowVelocity_ = relaxation_->velocity();
+    return;
+  }
   stepper_->checkStableStep(t1 - t0);
   subcycled_->solve(t0, t1 - t0, loadStart_, loadEnd_);
 }
@@ -192,6 +274,8 @@ std::vector<double> StructureParticipant::interfaceDisplacement() const {
 }
 
 std::vector<double> StructureParticipant::interfaceVelocity() const {
+  if (equilibrium_ && windowVelocity_.size() > 0)
+    return std::vector<double>(windowVelocity_.data(), windowVelocity_.data() + windowVelocity_.size());
   const structure::Nodes& N = scene_->model->nodes;
   const auto& nodes = interface_->nodes();
   std::vector<double> v(3 * nodes.size());
@@ -204,7 +288,8 @@ std::array<double, 3> StructureParticipant::interfaceForce() const {
   structure::InterfaceLoad atEnd;
   atEnd.kind = kind_;
   const Eigen::VectorXd end =
-      TimeInterpolation(subcycled_->options().interpolation, loadStart_, loadEnd_).at(1.0);
+      equilibrium_ ? loadEnd_  // the frozen load of the relaxation
+                   : TimeInterpolation(subcycled_->options().interpolation, loadStart_, loadEnd_).at(1.0);
   atEnd.values.assign(end.data(), end.data() + end.size());
   std::vector<double> fe(3 * scene_->model->nodes.count, 0.0), fi(fe);
   structure::ForceContext ctx;

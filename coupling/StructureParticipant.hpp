@@ -15,6 +15,10 @@
 // interface node (the conservative transfer of the fluid's face forces; what the OpenFOAM adapter uses).
 // Which of the two solve() receives is stated once (setLoadKind), never guessed from the vector's length.
 //
+// In equilibrium mode (setStructureMode) a window does not integrate the motion over Δt: the structure
+// relaxes under the window's end load for N damped pseudo-steps (coupling/scheme/Equilibrium) and its clock
+// is then set to the window's end; interfaceVelocity() is the window's displacement change over Δt.
+//
 // Call sequence per fluid step [t, t + Δt]:
 //   setPressure(p(t), p(t+Δt)) or setForces(f(t), f(t+Δt));  advance(Δt);  interfaceDisplacement();
 //   (+ restoreCheckpoint() to iterate), or, as a StructureSolver of a CouplingScheme: setLoadKind() once,
@@ -30,6 +34,7 @@
 #include <vector>
 
 #include "coupling/interface/InterfaceMesh.hpp"
+#include "coupling/scheme/Equilibrium.hpp"
 #include "coupling/scheme/Solvers.hpp"
 #include "coupling/scheme/Subcycling.hpp"
 #include "structure/effects/InterfacePressure.hpp"
@@ -77,6 +82,18 @@ class StructureParticipant final : public StructureSolver {
   /// std::invalid_argument. Used to show that subcycling does not change a coupled answer beyond the
   /// time-discretisation error.
   void setMinSubcycles(int n);
+  /// Time-accurate (default) or equilibrium windows, the latter with `equilibriumSteps` damped pseudo-steps
+  /// per window (< 1 throws std::invalid_argument).
+  void setStructureMode(StructureMode mode, int equilibriumSteps = EquilibriumOptions{}.steps);
+  StructureMode structureMode() const {
+    return equilibrium_ ? StructureMode::Equilibrium : StructureMode::TimeAccurate;
+  }
+  /// The last window's relaxation (equilibrium mode; all zero otherwise).
+  EquilibriumReport equilibriumReport() const;
+  /// Static residual at the current state under the window's end load: max |f_ext − f_int| over the free dofs
+  /// over the largest support reaction (or the largest applied force without supports), as the structure's
+  /// dynamic relaxation measures it; 0 at equilibrium. Evaluates the forces (does not move the structure).
+  double staticResidualRatio();
   /// Integrates [t, t + dt] with the explicit solver (subcycling) under the interpolated pressure; throws
   /// StructureUnstable (with a diagnosis) if the state becomes non-finite.
   void advance(double dt);
@@ -85,7 +102,9 @@ class StructureParticipant final : public StructureSolver {
   void advanceTo(double tEnd);
 
   std::vector<double> interfaceDisplacement() const;  ///< 3 per interface node [m]
-  std::vector<double> interfaceVelocity() const;      ///< 3 per interface node [m/s], at the last half step
+  /// 3 per interface node [m/s]: at the last half step; in equilibrium mode the last window's displacement
+  /// change over its length.
+  std::vector<double> interfaceVelocity() const;
   /// Sum of the interface forces at the current state (for conservation checks) [N], under the window's load
   /// at its end as the window rule sees it (the mean of both ends for `mean`, the end value otherwise).
   std::array<double, 3> interfaceForce() const;
@@ -128,7 +147,8 @@ class StructureParticipant final : public StructureSolver {
   const structure::CentralDifference& integrator() const { return *cd_; }
 
  private:
-  class Substeps;  // the StructureStepper over cd_ (StructureParticipant.cpp)
+  class Substeps;    // the StructureStepper over cd_ (StructureParticipant.cpp)
+  class Relaxation;  // the RelaxationStepper over cd_ (equilibrium mode)
   void setWindowLoads(structure::InterfaceLoadKind kind, const double* start, const double* end,
                       std::size_t size);
   void makeSubcycling();
@@ -143,6 +163,9 @@ class StructureParticipant final : public StructureSolver {
   std::unique_ptr<structure::CentralDifference> cd_;
   std::unique_ptr<Substeps> stepper_;  // also holds the checkpoint
   std::unique_ptr<SubcycledStructure> subcycled_;
+  std::unique_ptr<Relaxation> relaxation_;             // equilibrium mode only
+  std::unique_ptr<EquilibriumStructure> equilibrium_;  // equilibrium mode only
+  Eigen::VectorXd windowVelocity_;                     // equilibrium mode: (d_end − d_start) / Δt
   InterfaceMesh mesh_;
   structure::InterfaceLoadKind kind_ = structure::InterfaceLoadKind::Pressure;
   Eigen::VectorXd loadStart_, loadEnd_;  ///< the window's loads, of kind_

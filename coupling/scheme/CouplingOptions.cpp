@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "coupling/mapping/L2Projection.hpp"
+#include "coupling/scheme/Equilibrium.hpp"
 #include "coupling/scheme/acceleration/AccelerationRegistry.hpp"
 #include "structure/scene/NearestName.hpp"
 
@@ -345,6 +346,8 @@ OptionValues OptionSchema::validate(const OptionTokens& tokens) const {
 //   tolerance in (0, 1): a relative residual; 1 or more accepts any first iterate, 0 never converges.
 //   maxIterations >= 1, reuse >= 0, extrapolation 0..2 (the predictors CouplingScheme has), subcycles >= 1.
 //   rho, mapTolerance > 0: a density and a distance.
+//   equilibriumSteps >= 1 (EquilibriumStructure); loadRelaxation in (0, 1]: 1 hands over the fluid's load
+//     unchanged, 0 would never let it in, and beyond 1 it over-relaxes an oscillating feedback further.
 
 OptionSpec realOption(std::string key, std::string def, std::optional<Bound> lo, std::optional<Bound> hi,
                       std::string description) {
@@ -384,6 +387,8 @@ OptionSpec wordSpec(std::string key, OptionType type, std::string def, std::vect
 
 const OptionCondition kWithScene{"scene", {}};
 const OptionCondition kImplicit{"scheme", {"implicit"}};
+const OptionCondition kTimeAccurate{"structureMode", {"timeAccurate"}};
+const OptionCondition kEquilibrium{"structureMode", {"equilibrium"}};
 
 }  // namespace
 
@@ -434,8 +439,21 @@ OptionSchema couplingOptionSchema() {
                                        "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";
   coupled.push_back(mapTolerance);
-  coupled.push_back(integerOption("subcycles", "1", Bound{1, true}, std::nullopt,
-                                  "at least this many structural steps per fluid step"));
+  OptionSpec subcycles = integerOption("subcycles", "1", Bound{1, true}, std::nullopt,
+                                       "at least this many structural steps per fluid step");
+  subcycles.when = {kTimeAccurate};
+  coupled.push_back(subcycles);
+  coupled.push_back(wordSpec("structureMode", OptionType::Choice, toString(StructureMode::TimeAccurate),
+                             structureModeNames(),
+                             "timeAccurate: the structure's motion over each fluid step; equilibrium: its "
+                             "damped relaxation under the step's load (steady states)"));
+  OptionSpec equilibriumSteps =
+      integerOption("equilibriumSteps", std::to_string(EquilibriumOptions{}.steps), Bound{1, true},
+                    std::nullopt, "damped structural pseudo-steps per fluid step towards equilibrium");
+  equilibriumSteps.when = {kEquilibrium};
+  coupled.push_back(equilibriumSteps);
+  coupled.push_back(realOption("loadRelaxation", "1", Bound{0, false}, Bound{1, true},
+                               "the structure gets w f + (1 - w) f_previous of the fluid's load f; 1: off"));
   OptionSpec restore = wordSpec("restoreMeshPoints", OptionType::Switch, "yes", {},
                                 "a repeated step starts from the first pass's mesh points (exact repeat)");
   restore.when = {kImplicit};
@@ -459,12 +477,18 @@ std::unique_ptr<Acceleration> makeAcceleration(const OptionValues& values) {
   throw std::invalid_argument("makeAcceleration: unknown acceleration " + name);
 }
 
+StructureMode structureMode(const OptionValues& values) {
+  return values.text("structureMode") == toString(StructureMode::Equilibrium) ? StructureMode::Equilibrium
+                                                                              : StructureMode::TimeAccurate;
+}
+
 CouplingConfig couplingConfig(const OptionValues& values, double timeWindowSize, double endTime) {
   CouplingConfig c;
   c.kind = values.text("scheme") == "implicit" ? SchemeKind::Implicit : SchemeKind::Staggered;
   c.timeWindowSize = timeWindowSize;
   c.endTime = endTime;
   c.extrapolationOrder = int(values.integer("extrapolation"));
+  c.loadRelaxation = values.real("loadRelaxation");
   if (c.kind == SchemeKind::Implicit) {
     c.relativeTolerance = values.real("tolerance");
     c.maxIterations = int(values.integer("maxIterations"));

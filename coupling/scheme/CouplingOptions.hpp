@@ -19,6 +19,7 @@
 
 #include "coupling/scheme/Acceleration.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
+#include "coupling/scheme/Equilibrium.hpp"
 
 namespace fsi::coupling {
 
@@ -143,9 +144,12 @@ OptionSpec omegaOption(const std::string& def, const std::string& description);
 /// keys). docs/COUPLING.md lists the table.
 OptionSchema couplingOptionSchema();
 
+/// The structure's mode from validated options (`structureMode`).
+StructureMode structureMode(const OptionValues& values);
+
 /// The acceleration chosen by validated options (`acceleration` and its options).
 std::unique_ptr<Acceleration> makeAcceleration(const OptionValues& values);
-/// Scheme settings from validated options: kind, extrapolation, tolerance, maxIterations.
+/// Scheme settings from validated options: kind, extrapolation, load relaxation, tolerance, maxIterations.
 CouplingConfig couplingConfig(const OptionValues& values, double timeWindowSize, double endTime);
 
 /// The schema as a Markdown table (key | type | default | valid | effect | description), for the docs.

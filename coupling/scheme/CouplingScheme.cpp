@@ -15,6 +15,9 @@ CouplingScheme::CouplingScheme(const CouplingConfig& config, StructureSolver& st
     throw std::invalid_argument("CouplingScheme: timeWindowSize must be > 0");
   if (config_.extrapolationOrder < 0 || config_.extrapolationOrder > 2)
     throw std::invalid_argument("CouplingScheme: extrapolationOrder must be 0, 1 or 2");
+  if (!(config_.loadRelaxation > 0.0 && config_.loadRelaxation <= 1.0))
+    throw std::invalid_argument(fmt::format(
+        "CouplingScheme: loadRelaxation = {:g}, valid: 0 < loadRelaxation <= 1", config_.loadRelaxation));
   if (config_.kind == SchemeKind::Implicit) {
     if (!acceleration_)
       throw std::invalid_argument("CouplingScheme: the implicit scheme needs an Acceleration");
@@ -110,13 +113,17 @@ double CouplingScheme::advance(const Eigen::VectorXd& loads) {
     throw CouplingError("CouplingScheme::advance: loads have size " + std::to_string(loads.size()) +
                         ", expected " + std::to_string(loadsStart_.size()));
   const double dt = config_.timeWindowSize;
+  // What the structure gets: relaxed towards the load it got last (the window's start), never towards an
+  // iterate of this window, so an implicit window still iterates to a fixed point.
+  const double w = config_.loadRelaxation;
+  const Eigen::VectorXd applied = w == 1.0 ? loads : Eigen::VectorXd(w * loads + (1.0 - w) * loadsStart_);
 
   if (config_.kind == SchemeKind::Staggered) {
-    const Eigen::VectorXd dEnd = structure_.solve(t_, dt, loadsStart_, loads);
+    const Eigen::VectorXd dEnd = structure_.solve(t_, dt, loadsStart_, applied);
     if (!dEnd.allFinite())
       throw CouplingError("CouplingScheme: non-finite structure displacement in window " +
                           std::to_string(window_));
-    completeWindow(loads, dEnd, 1, true, 0.0, 0.0);
+    completeWindow(applied, dEnd, 1, true, 0.0, 0.0);
     return dt;
   }
 
@@ -125,7 +132,7 @@ double CouplingScheme::advance(const Eigen::VectorXd& loads) {
     structure_.saveCheckpoint();
   else
     structure_.restoreCheckpoint();
-  const Eigen::VectorXd dTilde = structure_.solve(t_, dt, loadsStart_, loads);
+  const Eigen::VectorXd dTilde = structure_.solve(t_, dt, loadsStart_, applied);
   if (dTilde.size() != input_.size())
     throw CouplingError("CouplingScheme: structure returned " + std::to_string(dTilde.size()) +
                         " displacement values, expected " + std::to_string(input_.size()));
@@ -144,7 +151,7 @@ double CouplingScheme::advance(const Eigen::VectorXd& loads) {
       throw CouplingError("CouplingScheme: window " + std::to_string(window_) + " not converged after " +
                           std::to_string(iterations) + " iterations (relative residual " +
                           std::to_string(rel) + ")");
-    completeWindow(loads, dTilde, iterations, converged, res, rel);
+    completeWindow(applied, dTilde, iterations, converged, res, rel);
     return dt;
   }
   input_ = acceleration_->compute(input_, dTilde);

@@ -42,6 +42,12 @@ struct CouplingConfig {
   double absoluteTolerance = 1e-12;
   int maxIterations = 50;
   bool throwOnNonConvergence = false;  ///< else the window is accepted and reported as not converged
+  /// Under-relaxed load transfer, 0 < ω <= 1 (1: off): the structure gets ω f + (1 − ω) f_prev as the
+  /// window's end load, f the fluid's load and f_prev the load it got at the end of the previous window (the
+  /// fluid's load at t0 for the first). Damps an oscillating load–shape feedback on the way to a steady state
+  /// (docs/COUPLING.md "Coupling to equilibrium"); the converged steady state is the same, the path in time
+  /// is not (a lag of about (1 − ω) / ω windows).
+  double loadRelaxation = 1.0;
 };
 
 struct WindowReport {
@@ -95,7 +101,8 @@ class CouplingScheme {
   const Eigen::VectorXd& displacement() const { return input_; }
   /// The structure's displacement at the end of the last accepted window (d0 after initialize()).
   const Eigen::VectorXd& acceptedDisplacement() const { return history_.front(); }
-  /// Loads at the start of the current window (the accepted end loads of the previous one).
+  /// Loads at the start of the current window (the accepted end loads of the previous one, as the structure
+  /// got them: relaxed when CouplingConfig::loadRelaxation < 1).
   const Eigen::VectorXd& loadsAtWindowStart() const { return loadsStart_; }
   double time() const { return t_; }  ///< start of the current window
   double timeWindowSize() const { return config_.timeWindowSize; }

@@ -225,6 +225,16 @@ bool CentralDifference::step(double limitTime, bool monitor) {
   return std::isfinite(ke) && std::isfinite(prod) && std::isfinite(wInt) && std::isfinite(wExt);
 }
 
+void CentralDifference::stopMotion() {
+  std::fill(model_.nodes.v.begin(), model_.nodes.v.end(), 0.0);
+  // KE× = ½ v(n−½)·M v(n+½) drops to zero with v(n+½): that energy leaves as dissipation. The pending second
+  // halves of the last evaluation's work are ½Δ G·v(n+½), zero now (the next step's first halves are zero
+  // too, with v(n+½) = 0), so the identity KE×(n+1) − KE×(n) = work booked goes on holding.
+  ledger_.massDamping += ledger_.kineticProduct;
+  ledger_.kinetic = ledger_.kineticProduct = 0;
+  ledger_.pendingExt = ledger_.pendingInt = ledger_.pendingDamp = 0;
+}
+
 void CentralDifference::restore(const std::vector<double>& x, const std::vector<double>& v, double time,
                                 double dt, long steps) {
   model_.nodes.x = x;

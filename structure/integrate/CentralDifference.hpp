@@ -46,6 +46,12 @@ class CentralDifference {
   double maxDt() const { return settings_.maxDt; }
   const EnergyLedger& energy() const { return ledger_; }
   const Constraints& constraints() const { return constraints_; }
+  /// Kinetic damping (equilibrium coupling, coupling/scheme/Equilibrium): every velocity v(n+½) to zero. The
+  /// kinetic energy removed is booked as dissipation (with the mass damping's), so the balance stays exact.
+  void stopMotion();
+  /// Moves the clock to `t` without moving the structure: the pseudo-steps of an equilibrium coupling's
+  /// relaxation are not physical time, and the window ends at the fluid's time.
+  void setTime(double t) { time_ = t; }
   /// Re-evaluates forces at the current state (for reactions and output); does not advance.
   void evaluateForces(bool withEnergy);
   /// The energy created in the elements through the current state x(n+1), as EnergyLedger::created() at a

@@ -31,6 +31,10 @@
 #                     OpenFOAM's generic keys are accepted, an option without effect is a warning
 #   subcycles       : 1 vs 10 structural steps per fluid step differ less than the coupled time-step error
 #   convergence     : halving the fluid step: successive differences of the answer shrink (order > 0.7)
+#   equilibrium     : structureMode equilibrium with loadRelaxation 0.3, fluid step 1 s: the bottom settles to the
+#                     static arc of a membrane strip under 0.2 Pa (closed form) with the fluid force gone (force
+#                     balance) and the structure's static residual small; 100 pseudo-steps per window in
+#                     coupling.csv; without load relaxation the same case does not settle
 # Usage: run_adapter_test.sh MODE ADAPTER_LIB WORK_DIR
 set -uo pipefail
 mode=$1 lib=$2 work=$3
@@ -365,6 +369,57 @@ print(f"mid-point rise at t = 0.5 s: dt 0.02 {z1:.9g}, 0.01 {z2:.9g}, 0.005 {z4:
 sys.exit(0 if order > 0.7 else 1)
 PY
     ;;
+  equilibrium)
+    # The bottom strip (1 m between clamps, E t = 12.5 N/m, 8 elements, width held) under 0.2 Pa from below with
+    # the fluid at rest above: at steady state the fluid's pressure on it is zero and the strip is a regular
+    # polygon inscribed in a circular arc (uniform follower pressure: equal tension T in every element, each node
+    # turned by theta / 4 with 2 T sin(theta / 8) = p l). Chord 1, arc half-angle theta: T = p / (2 sin theta),
+    # stretch lambda = 8 sin(theta / 8) / sin theta, and the St Venant-Kirchhoff law of the (total Lagrangian)
+    # membrane gives the tension per reference width T = E t lambda (lambda^2 - 1) / 2. Mid-point rise:
+    # tan(theta / 2) / 2.
+    for w in 0.3 1; do
+      prepare "$work/omega$w"
+      fsi_option "$work/omega$w" "structureMode equilibrium; loadRelaxation $w; progress 0;"
+      set_entry "$work/omega$w" deltaT 1; set_entry "$work/omega$w" endTime 30; set_entry "$work/omega$w" writeInterval 30
+      solve "$work/omega$w"
+      [ $rc -eq 0 ] || fail "loadRelaxation $w exited with $rc"
+    done
+    grep -q "equilibrium mode: 100 damped pseudo-steps per window (kinetic damping), load relaxation 0.3" \
+      "$work/omega0.3/log.pimpleFoam" || fail "no start-up line for the equilibrium mode"
+    /usr/bin/python3 - "$work" <<'PY' || fail "equilibrium coupling"
+import csv, math, os, sys
+def rows(name):
+    lines = [l for l in open(os.path.join(sys.argv[1], name, "structure", "coupling.csv")) if not l.startswith("#")]
+    return list(csv.DictReader(lines))
+p, L, Et, n = 0.2, 1.0, 12.5, 8
+def f(th):
+    lam = n * math.sin(th / n) / math.sin(th)
+    return p * L / (2 * math.sin(th)) - Et * lam * (lam * lam - 1) / 2
+a, b = 0.1, 1.0  # f(a) > 0 > f(b): bisection
+for _ in range(100):
+    m = 0.5 * (a + b)
+    a, b = (m, b) if f(m) > 0 else (a, m)
+exact = math.tan(0.5 * a) / 2
+applied = p * L * 0.1  # the pressure's force on the 0.1 m wide strip [N]
+r = rows("omega0.3")
+z = [float(x["mid_z"]) for x in r]
+assert len(r) == 30 and all(x["subcycles"] == "100" for x in r), "30 windows of 100 pseudo-steps each"
+settled = next(k for k in range(len(z)) if all(abs(v - exact) <= 5e-3 * exact for v in z[k:])) + 1 \
+    if abs(z[-1] - exact) <= 5e-3 * exact else None
+last = r[-1]
+Ff, Fs, res = abs(float(last["Fz_fluid"])), abs(float(last["Fz_structure"])), float(last["equilibrium_residual"])
+print(f"omega 0.3: mid-point rise {z[-1]:.6g} m, closed form {exact:.6g} m ({(z[-1] - exact) / exact:+.2e}), within "
+      f"0.5 % from window {settled}; last window: fluid force {Ff:.2e} N ({Ff / applied:.1e} of the pressure's "
+      f"{applied:g} N), static residual {res:.1e}, change {abs(z[-1] - z[-2]):.1e} m")
+assert settled is not None, "does not reach the closed-form arc"
+assert Ff <= 1e-4 * applied and Fs <= 1e-4 * applied, "the fluid still pushes: no steady state"
+assert res <= 1e-3, "the structure is not in equilibrium"
+assert abs(z[-1] - z[-2]) <= 1e-6 * exact, "the shape still changes"
+z1 = [float(x["mid_z"]) for x in rows("omega1")]
+print(f"omega 1: mid-point rise {z1[-1]:.6g} m after 30 windows, static residual {float(rows('omega1')[-1]['equilibrium_residual']):.2g}")
+assert abs(z1[-1] - exact) > 1e-2 * exact, "without load relaxation the oscillation should not settle"
+PY
+    ;;
   bad-option)
     # The misspellings of issue 10, each silently ignored before.
     for typo in "shceme implicit:scheme" "accleration aitken:acceleration" "omgea 0.3:omega" "tolerence 1e-3:tolerance" \
@@ -383,6 +438,9 @@ PY
     refused "$work/case" "scheme implicit; tolerance 0;" "option 'tolerance' = 0 is out of range; valid: 0 < tolerance < 1"
     refused "$work/case" "extrapolation 7;" "option 'extrapolation' = 7 is out of range; valid: integer, 0 <= extrapolation <= 2"
     refused "$work/case" "subcycles 0;" "option 'subcycles' = 0 is out of range; valid: integer, subcycles >= 1"
+    refused "$work/case" "structureMode equilibrum;" "option 'structureMode' = equilibrum is not a valid choice (did you mean 'equilibrium'?)"
+    refused "$work/case" "structureMode equilibrium; equilibriumSteps 0;" "option 'equilibriumSteps' = 0 is out of range; valid: integer, equilibriumSteps >= 1"
+    refused "$work/case" "loadRelaxation 1.5;" "option 'loadRelaxation' = 1.5 is out of range; valid: 0 < loadRelaxation <= 1"
     refused "$work/case" "scheme implicite;" "option 'scheme' = implicite is not a valid choice (did you mean 'implicit'?)"
     refused "$work/case" "maxIterations 2.5; scheme implicit;" "option 'maxIterations' = 2.5 is not an integer"
     # OpenFOAM's time-control keys: the coupling would skip steps or (implicit) run twice after a restore

@@ -139,6 +139,15 @@ TEST(CouplingOptions, EveryBadValueNamesTheKeyAndTheValidRange) {
       {"tolerance", "0", "0 < tolerance < 1"},
       {"tolerance", "1", "0 < tolerance < 1"},
       {"subcycles", "0", "integer, subcycles >= 1"},
+      {"structureMode", "steady", "one of timeAccurate equilibrium"},
+      {"structureMode", "equilibrum", "one of timeAccurate equilibrium"},
+      {"equilibriumSteps", "0", "integer, equilibriumSteps >= 1"},
+      {"equilibriumSteps", "-100", "integer, equilibriumSteps >= 1"},
+      {"equilibriumSteps", "2.5", "integer, equilibriumSteps >= 1"},
+      {"loadRelaxation", "0", "0 < loadRelaxation <= 1"},
+      {"loadRelaxation", "-0.5", "0 < loadRelaxation <= 1"},
+      {"loadRelaxation", "1.5", "0 < loadRelaxation <= 1"},
+      {"loadRelaxation", "half", "0 < loadRelaxation <= 1"},
       {"mapTolerance", "0", "mapTolerance > 0"},
       {"rho", "0", "rho > 0"},
       {"rho", "-1.2", "rho > 0"},
@@ -156,6 +165,15 @@ TEST(CouplingOptions, EveryBadValueNamesTheKeyAndTheValidRange) {
   }
   EXPECT_NE(errorOf(with(implicitCase(), "scheme", "implict")).find("did you mean 'implicit'"),
             std::string::npos);
+  EXPECT_NE(errorOf(with(implicitCase(), "structureMode", "equilibrum")).find("did you mean 'equilibrium'"),
+            std::string::npos);
+  // equilibriumSteps is checked (and keyed for the adapter's line number) even where it has no effect.
+  try {
+    couplingOptionSchema().validate(with(minimal(), "equilibriumSteps", "0"));
+    ADD_FAILURE() << "equilibriumSteps 0 accepted";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.key(), "equilibriumSteps");
+  }
   OptionTokens empty = implicitCase();
   empty[6].second.clear();  // `omega ;`
   EXPECT_NE(errorOf(empty).find("option 'omega' = (nothing) has no value"), std::string::npos)
@@ -227,6 +245,40 @@ TEST(CouplingOptions, OptionsWithoutEffectGiveAWarningNotAnError) {
             std::string::npos);
 }
 
+TEST(CouplingOptions, StructureModeOptionsAndTheirEffect) {
+  const OptionSchema schema = couplingOptionSchema();
+  // Defaults: time-accurate windows, subcycles applies, equilibriumSteps does not; no load relaxation.
+  const OptionValues d = schema.validate(minimal());
+  EXPECT_EQ(d.text("structureMode"), "timeAccurate");
+  EXPECT_EQ(structureMode(d), StructureMode::TimeAccurate);
+  EXPECT_EQ(d.integer("subcycles"), 1);
+  EXPECT_FALSE(d.has("equilibriumSteps"));
+  EXPECT_DOUBLE_EQ(d.real("loadRelaxation"), 1.0);
+  EXPECT_DOUBLE_EQ(couplingConfig(d, 0.01, 1.0).loadRelaxation, 1.0);
+  // Equilibrium: equilibriumSteps defaults to 100 (Kalro & Tezduyar's count), subcycles has no effect.
+  const OptionValues e =
+      schema.validate(minimal({{"structureMode", {"equilibrium"}}, {"loadRelaxation", {"0.3"}}}));
+  EXPECT_EQ(structureMode(e), StructureMode::Equilibrium);
+  EXPECT_EQ(e.integer("equilibriumSteps"), 100);
+  EXPECT_FALSE(e.has("subcycles"));
+  EXPECT_TRUE(e.warnings().empty());
+  EXPECT_DOUBLE_EQ(couplingConfig(e, 0.01, 1.0).loadRelaxation, 0.3);
+  EXPECT_EQ(schema.validate(minimal({{"structureMode", {"equilibrium"}}, {"equilibriumSteps", {"400"}}}))
+                .integer("equilibriumSteps"),
+            400);
+  // Each mode's option given with the other mode: a warning naming what it needs, not an error.
+  const OptionValues w = schema.validate(minimal({{"equilibriumSteps", {"50"}}}));
+  ASSERT_EQ(w.warnings().size(), 1u);
+  EXPECT_EQ(w.warnings()[0],
+            "option 'equilibriumSteps' has no effect with structureMode timeAccurate (it needs structureMode "
+            "equilibrium)");
+  const OptionValues s = schema.validate(minimal({{"structureMode", {"equilibrium"}}, {"subcycles", {"4"}}}));
+  ASSERT_EQ(s.warnings().size(), 1u);
+  EXPECT_EQ(s.warnings()[0],
+            "option 'subcycles' has no effect with structureMode equilibrium (it needs structureMode "
+            "timeAccurate)");
+}
+
 TEST(CouplingOptions, RangesAgreeWithTheLibraryChecks) {
   IdleStructure idle;
   // Each value: does the table accept it, does the class that uses it accept it?
@@ -289,6 +341,19 @@ TEST(CouplingOptions, RangesAgreeWithTheLibraryChecks) {
     EXPECT_EQ(accepted(with(minimal(), "subcycles", std::to_string(n))),
               !throws([&] { drum.setMinSubcycles(n); }))
         << n;
+  for (const int n : {-1, 0, 1, 100})
+    EXPECT_EQ(
+        accepted(minimal({{"structureMode", {"equilibrium"}}, {"equilibriumSteps", {std::to_string(n)}}})),
+        !throws([&] { drum.setStructureMode(StructureMode::Equilibrium, n); }))
+        << n;
+  for (const char* w : {"-1", "0", "1e-9", "0.5", "1", "1.000001", "2"}) {
+    CouplingConfig c;
+    c.kind = SchemeKind::Staggered;
+    c.timeWindowSize = 0.01;
+    c.loadRelaxation = std::stod(w);
+    EXPECT_EQ(accepted(with(minimal(), "loadRelaxation", w)), !throws([&] { CouplingScheme s(c, idle); }))
+        << w;
+  }
 }
 
 TEST(CouplingOptions, ConfigAndAccelerationFromValues) {

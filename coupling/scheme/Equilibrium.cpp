@@ -1,0 +1,56 @@
+#include "coupling/scheme/Equilibrium.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace fsi::coupling {
+
+const std::vector<std::string>& structureModeNames() {
+  static const std::vector<std::string> names{"timeAccurate", "equilibrium"};
+  return names;
+}
+
+std::string toString(StructureMode mode) {
+  return structureModeNames()[std::size_t(mode)];
+}
+
+EquilibriumStructure::EquilibriumStructure(RelaxationStepper& stepper, EquilibriumOptions options)
+    : stepper_(stepper), opt_(options) {
+  if (opt_.steps < 1)
+    throw std::invalid_argument("EquilibriumStructure: equilibriumSteps = " + std::to_string(opt_.steps) +
+                                ", valid: >= 1");
+}
+
+Eigen::VectorXd EquilibriumStructure::solve(double t, double dt, const Eigen::VectorXd& /*loadsStart*/,
+                                            const Eigen::VectorXd& loadsEnd) {
+  if (!(dt > 0.0)) throw std::invalid_argument("EquilibriumStructure: window size must be > 0");
+  // The newest load only: the window's start load is what the previous window relaxed under already.
+  const Eigen::VectorXd start = stepper_.interfaceDisplacement();
+  stepper_.freezeLoads(loadsEnd);
+  // Every window starts from rest: the load changed, and the previous window's pseudo-velocities are no
+  // motion of the structure.
+  stepper_.stopMotion();
+  last_ = {};
+  double previous = 0.0;
+  for (int i = 0; i < opt_.steps; ++i) {
+    const double ke = stepper_.relaxStep();
+    if (ke < previous) {
+      // Past a peak of the kinetic energy: the structure is near the minimum of its potential along the path
+      // it took; stop it there and let the forces start it again (kinetic damping).
+      stepper_.stopMotion();
+      ++last_.resets;
+      previous = 0.0;
+    } else {
+      previous = ke;
+    }
+    last_.lastKinetic = ke;
+  }
+  last_.steps = opt_.steps;
+  // The window ends at rest: what is left of the pseudo-motion is not the structure's velocity.
+  stepper_.stopMotion();
+  const Eigen::VectorXd end = stepper_.interfaceDisplacement();
+  stepper_.endWindow(t + dt, (end - start) / dt);
+  return end;
+}
+
+}  // namespace fsi::coupling

@@ -329,6 +329,11 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
               Eigen::Map<const Eigen::VectorXd>(it->second.data(), Eigen::Index(it->second.size())));
       }
       scheme_->restoreHistory(history);
+      // The load the structure got last: with loadRelaxation < 1 the next one is relaxed towards it.
+      const auto applied = restartArrays.find("applied_loads");
+      if (applied != restartArrays.end())
+        scheme_->restoreLoadsAtWindowStart(
+            Eigen::Map<const Eigen::VectorXd>(applied->second.data(), Eigen::Index(applied->second.size())));
     } catch (const std::exception& e) {
       FatalIOErrorInFunction(dict) << "fsiCoupling: " << e.what() << exit(FatalIOError);
     }
@@ -419,6 +424,8 @@ void fsiCoupling::writeStructure() {
   for (std::size_t k = 0; k < h.size(); ++k)
     arrays["interface_history_" + std::to_string(k)] =
         std::vector<double>(h[k].data(), h[k].data() + h[k].size());
+  const Eigen::VectorXd& applied = scheme_->loadsAtWindowStart();
+  arrays["applied_loads"] = std::vector<double>(applied.data(), applied.data() + applied.size());
   structure_->writeState(std::string(stateFile(time_.timePath())), arrays);
 }
 

@@ -57,6 +57,14 @@ void CouplingScheme::restoreHistory(const std::vector<Eigen::VectorXd>& newestFi
   input_ = predictor();
 }
 
+void CouplingScheme::restoreLoadsAtWindowStart(const Eigen::VectorXd& loads) {
+  requireInitialized("restoreLoadsAtWindowStart");
+  if (loads.size() != loadsStart_.size())
+    throw CouplingError("CouplingScheme::restoreLoadsAtWindowStart: loads of size " +
+                        std::to_string(loads.size()) + ", expected " + std::to_string(loadsStart_.size()));
+  loadsStart_ = loads;
+}
+
 bool CouplingScheme::isCouplingOngoing() const {
   // Relative slack so that accumulated round-off in t does not add a window.
   return initialized_ && t_ < config_.endTime - 1e-9 * config_.timeWindowSize;

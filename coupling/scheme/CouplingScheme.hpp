@@ -81,6 +81,10 @@ class CouplingScheme {
   /// After initialize(): continue a run whose accepted end displacements were `newestFirst` (the first is
   /// the current displacement; at most 3 are used), so a restart predicts like the uninterrupted run.
   void restoreHistory(const std::vector<Eigen::VectorXd>& newestFirst);
+  /// After initialize(): continue a run whose structure got `loads` at the end of its last accepted window
+  /// (loadsAtWindowStart() of that run), so that a restarted run relaxes its loads (loadRelaxation < 1) like
+  /// the uninterrupted one.
+  void restoreLoadsAtWindowStart(const Eigen::VectorXd& loads);
   /// Accepted end displacements, newest first (what restoreHistory() takes).
   const std::vector<Eigen::VectorXd>& history() const { return history_; }
 

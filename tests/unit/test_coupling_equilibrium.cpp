@@ -441,3 +441,49 @@ TEST(CouplingEquilibrium, AnAddedMassMakesEquilibriumWindowsDivergeUnlessRelaxed
   EXPECT_GT(run("mu 1 staggered", 0.01, heavy).error.back(), 1e3);
   EXPECT_GT(run("mu 1 implicit IQN-ILS", 1.0, heavyImplicit).error.back(), 1e-2);
 }
+
+TEST(CouplingEquilibrium, ARestartKeepsTheRelaxedLoad) {
+  // Ten equilibrium windows with omega = 0.4 (kappa c = 3), against five, a restart (a new scheme from the
+  // structure's state, the displacement history and the load the structure got last), and five more.
+  const double h = 1.0 / (kNodes + 1), kappa = 36.0 / (1.0 - h * h);
+  Cushion cushion(kNodes, kP0, kappa);
+  CouplingConfig cfg;
+  cfg.kind = SchemeKind::Staggered;
+  cfg.timeWindowSize = kWindow;
+  cfg.extrapolationOrder = 0;
+  cfg.loadRelaxation = 0.4;
+  const VectorXd zero = VectorXd::Zero(kNodes);
+  String a(kNodes, 0.0);
+  EquilibriumStructure ea(a);
+  cfg.endTime = 10 * kWindow;
+  CouplingScheme full(cfg, ea);
+  full.initialize(0.0, zero, cushion.loads(zero));
+  String b(kNodes, 0.0);
+  EquilibriumStructure eb(b);
+  cfg.endTime = 5 * kWindow;
+  CouplingScheme first(cfg, eb);
+  first.initialize(0.0, zero, cushion.loads(zero));
+  for (int k = 0; k < 5; ++k) {
+    runTimeWindow(full, cushion);
+    runTimeWindow(first, cushion);
+  }
+  auto resume = [&](bool withLoads) {
+    String c = b;  // the structure's state at the restart
+    EquilibriumStructure ec(c);
+    CouplingConfig rc = cfg;
+    rc.endTime = 10 * kWindow;
+    CouplingScheme second(rc, ec);
+    const VectorXd& d = first.acceptedDisplacement();
+    second.initialize(first.time(), d, cushion.loads(d));
+    second.restoreHistory(first.history());
+    if (withLoads) second.restoreLoadsAtWindowStart(first.loadsAtWindowStart());
+    while (second.isCouplingOngoing()) runTimeWindow(second, cushion);
+    return VectorXd(second.acceptedDisplacement());
+  };
+  while (full.isCouplingOngoing()) runTimeWindow(full, cushion);
+  const VectorXd& d = full.acceptedDisplacement();
+  EXPECT_EQ((resume(true) - d).lpNorm<Eigen::Infinity>(), 0.0);
+  // Restarting from the fluid's load instead changes the path (not the steady state).
+  EXPECT_GT((resume(false) - d).lpNorm<Eigen::Infinity>(), 1e-3 * d.lpNorm<Eigen::Infinity>());
+  EXPECT_THROW(full.restoreLoadsAtWindowStart(VectorXd::Zero(kNodes + 1)), CouplingError);
+}

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# The coupled ram-air wing (cases/coupled/ramair-kt with coupled.settings: the main job's run, docs/RAMAIR.md),
+# run the way a user does: the case's tracked files copied out of the source tree, the build's fsi-env.sh
+# sourced, ./Allrun -settings coupled.settings. Checks summary.json and the outputs against references that
+# do not come from this code:
+#   coupling     every window ran; the interface force is the same on the fluid and the structure side
+#                (< 1e-6 relative, every window: the transfer is conservative)
+#   equilibrium  at the end the supports (confluence point and toggles) hold everything applied to the
+#                canopy: |reaction + applied| < 1 % of |applied| (static equilibrium of the anchored wing)
+#   symmetry     the wing and the flow are mirror-symmetric: left and right line tensions agree within 1 %,
+#                the side force is below 1 % of the lift
+#   flow         lift and drag settled (< 1 % over the last fifth of the windows); CL within 0.35-1.2 x
+#                Helmbold's low-aspect-ratio estimate (the same band as the rigid wing, fluid.ramair-kt);
+#                L/D between 3 and 20 (published ram-air wings: 3-6 with lines and payload, the closed
+#                canopy alone higher)
+#   mesh         checkMesh on the mesh as the canopy left it reports "Mesh OK"
+#   outputs      the plots and the canopy's picture exist, are PNGs and are not blank; ParaView files exist
+# Exit 77 (ctest: skipped) without Debian's OpenFOAM binaries.
+# Usage: run_ramair_coupled_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
+set -uo pipefail
+src=$1 build=$2 work=$3
+for app in blockMesh surfaceFeatureExtract snappyHexMesh checkMesh pimpleFoam; do
+  command -v "$app" > /dev/null || { echo "SKIP: $app not found (OpenFOAM is not installed)"; exit 77; }
+done
+fail() { echo "FAIL: $*"; exit 1; }
+rm -rf "$work" && mkdir -p "$work/ramair-kt" || exit 1
+case_files=$(git -C "$src" ls-files cases/coupled/ramair-kt)
+[ -n "$case_files" ] || fail "no tracked files in cases/coupled/ramair-kt"
+for f in $case_files; do cp "$src/$f" "$work/ramair-kt/"; done
+unset FSI_SHARE_DIR
+. "$build/share/fsi/fsi-env.sh"
+cd "$work/ramair-kt" || exit 1
+
+start=$(date +%s)
+./Allrun -settings coupled.settings || fail "Allrun failed"
+echo "Allrun: $(($(date +%s) - start)) s"
+/usr/bin/python3 - <<'PY'
+import json, math, os, sys
+s = json.load(open("summary.json"))
+c, e, mf = s["coupled"], s["estimate"], s.get("mesh_final", {})
+steps = s["settings"]["steps"]
+bad = []
+def check(ok, what):
+    if not ok:
+        bad.append(what)
+lift = c["history"]["Fz_fluid"]
+tail = lift[-max(2, len(lift) // 5):]
+spread = (max(tail) - min(tail)) / abs(lift[-1])
+print(f"windows {c['windows']}, force fluid/structure {c['force_fluid_vs_structure_max_relative']:.2e}, "
+      f"equilibrium {c['equilibrium_relative']:.2e}, lift spread over the last fifth {100 * spread:.2f} %")
+print(f"CL {c['CL']:.4f} (Helmbold {e['CL']:.4f}, ratio {c['CL'] / e['CL']:.3f}), CD {c['CD']:.4f}, L/D {c['L_over_D']:.2f}, "
+      f"side {c['side_N']:.4f} N, lines left/right {c['lines_left_sum_N']:.3f} / {c['lines_right_sum_N']:.3f} N")
+check(c["windows"] == steps, f"{c['windows']} windows, not {steps}")
+check(c["force_fluid_vs_structure_max_relative"] < 1e-6, "fluid and structure interface forces differ by 1e-6 or more")
+check(c["equilibrium_relative"] < 0.01, "the supports do not hold the applied load within 1 % (no static equilibrium)")
+check(abs(c["lines_left_sum_N"] - c["lines_right_sum_N"]) < 0.01 * c["lines_left_sum_N"], "left and right lines differ by 1 % or more")
+check(abs(c["side_N"]) < 0.01 * abs(c["lift_N"]), "side force of 1 % of the lift or more")
+check(spread < 0.01, "lift not settled (1 % over the last fifth)")
+check(all(math.isfinite(x) for x in c["fluid_force_N"]), "non-finite forces")
+check(0.35 <= c["CL"] / e["CL"] <= 1.2, "CL outside 0.35-1.2 x Helmbold's estimate")
+check(3 <= c["L_over_D"] <= 20, "L/D outside 3-20")
+check(mf.get("ok") and mf.get("failed_checks") == 0, "checkMesh of the moved mesh does not report OK")
+def png_ok(path):
+    """A PNG with something drawn: its pixels are not all one colour (standard deviation > 1 %)."""
+    import matplotlib.image
+    try:
+        with open(path, "rb") as f:
+            if f.read(8) != b"\x89PNG\r\n\x1a\n":
+                return False
+        return float(matplotlib.image.imread(path)[..., :3].std()) > 0.01
+    except (OSError, ValueError, SyntaxError):
+        return False
+for name in ("interface_force.png", "iterations.png", "probes.png", "structure.png"):
+    check(png_ok(os.path.join("plots", name)), f"plots/{name} missing, not a PNG or blank")
+check(os.path.exists("structure/results.xdmf") and os.path.exists("ramair-kt.foam"), "ParaView files missing")
+for b in bad:
+    print("FAIL:", b)
+sys.exit(1 if bad else 0)
+PY
+rc=$?
+[ $rc -eq 0 ] && echo "PASS ramair-kt coupled" || echo "FAIL ramair-kt coupled"
+exit $rc

@@ -264,7 +264,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       structure_->writeResults(t0);  // t = 0, or the restart time if the earlier run has no frame there
       std::string header =
           "time,iterations,converged,residual,Fx_fluid,Fy_fluid,Fz_fluid,Fx_structure,Fy_structure,Fz_"
-          "structure";
+          "structure,Mx_fluid,My_fluid,Mz_fluid,Mx_structure,My_structure,Mz_structure";
       for (const auto& [name, value] : fsi::structure::evaluateProbes(structure_->scene()))
         header += ',' + name;
       // Equilibrium mode: what each window's relaxation did, and how near equilibrium it ended.
@@ -388,6 +388,27 @@ std::vector<double> fsiCoupling::structureLoads(vector& fluidTotal) const {
     }
   }
   reduce(fluidTotal, sumOp<vector>());
+  // Moments about the origin of the same loads, each on its own side: the fluid's face forces at the
+  // moved face centres, the transferred nodal forces at the structure's interface nodes where the fluid
+  // saw them (reference + the window's displacement). Hᵀ keeps the force exactly; it keeps the moment only
+  // as far as H reproduces the positions (exact for coplanar meshes; a curved non-matching interface differs
+  // by the gap between the two surfaces, docs/COUPLING.md "Output of a coupled run").
+  vector fm = Zero;
+  forAll(interfaces_, i) {
+    const vectorField& Cf = mesh_.C().boundaryField()[patchIDs_[i]];
+    fm += sum(Cf ^ faceForces(i, viscous_)());
+  }
+  reduce(fm, sumOp<vector>());
+  fluidMoment_ = fm;
+  structureMoment_ = Zero;
+  if (Pstream::master() && scheme_ && scheme_->displacement().size() == Eigen::Index(loads.size())) {
+    const auto& x0 = structure_->interfaceMesh().points;
+    const Eigen::VectorXd& d = scheme_->displacement();
+    for (std::size_t n = 0; n < x0.size(); ++n) {
+      const vector x(x0[n][0] + d[3 * n], x0[n][1] + d[3 * n + 1], x0[n][2] + d[3 * n + 2]);
+      structureMoment_ += x ^ vector(loads[3 * n], loads[3 * n + 1], loads[3 * n + 2]);
+    }
+  }
   return loads;
 }
 
@@ -457,6 +478,8 @@ void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>&
   add(w.relativeResidual);
   for (direction k = 0; k < 3; ++k) add(fluidTotal[k]);
   for (direction k = 0; k < 3; ++k) add(structureTotal[k]);
+  for (direction k = 0; k < 3; ++k) add(fluidMoment_[k]);
+  for (direction k = 0; k < 3; ++k) add(structureMoment_[k]);
   for (const auto& [name, value] : probes) add(value);
   if (equilibrium_) {
     const fsi::coupling::EquilibriumReport r = structure_->equilibriumReport();

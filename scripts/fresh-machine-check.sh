@@ -263,7 +263,7 @@ awk '/\[install-deps\] (done|all [0-9]+ packages present)/ { inst = $1 }
      { last = $1 }
      END { printf "[fresh]   inside main.sh: installs %d s, build %d s, main job %d s\n", inst, built - inst, last - built }' \
   "$logs/main.log"
-for f in results/parafoil-kt-inflation/{results.xdmf,results.h5,summary.json} results/parafoil-kt-inflation/mesh/wing.{msh,stl} results/parafoil-kt-inflation/plots/{energy,probes,structure}.png; do
+for f in results/ramair-kt/{summary.json,ramair-kt.foam,log.pimpleFoam} results/ramair-kt/structure/{results.xdmf,results.h5,coupling.csv} results/ramair-kt/plots/{interface_force,iterations,probes,structure}.png; do
   [ -s "$root$home/parachute-fsi/$f" ] || { say "scripts/main.sh wrote no $f"; exit 1; }
 done
 

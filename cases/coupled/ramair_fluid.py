@@ -778,7 +778,8 @@ def summary(case):
         c = out["coupled"]
         print(f"coupled: {c['windows']} windows, {c['iterations_mean']:.2f} iterations per window (at most "
               f"{c['iterations_max']}, {c['not_converged']} not converged); interface force fluid vs structure "
-              f"{c['force_fluid_vs_structure_max_relative']:.1e}")
+              f"{c['force_fluid_vs_structure_max_relative']:.1e}, moment "
+              f"{c['moment_fluid_vs_structure_max_relative'] or float('nan'):.1e}")
         print(f"  lift {c['lift_N']:.2f} N, drag {c['drag_N']:.2f} N, side {c['side_N']:.3f} N: CL {c['CL']:.4f}, "
               f"CD {c['CD']:.4f}, L/D {c['L_over_D']:.2f}; pitch {c['pitch_deg']:.2f} deg")
         print(f"  anchor + toggles {v3(c['support_reaction_N'])} N vs applied {v3(c['applied_load_N'])} N "
@@ -831,6 +832,8 @@ def coupled_summary(case, d):
         "iterations_mean": sum(iters) / len(iters), "iterations_max": max(iters),
         "not_converged": sum(1 for r in rows if r["converged"] == "0"),
         "force_fluid_vs_structure_max_relative": summarize.force_difference(rows),
+        "moment_fluid_vs_structure_max_relative": summarize.moment_difference(rows),
+        "moment_fluid_Nm": vec("M", "_fluid"), "moment_structure_Nm": vec("M", "_structure"),
         "fluid_force_N": fluid, "lift_N": lift, "drag_N": drag, "side_N": fluid[1],
         "CL": lift / (q * aref), "CD": drag / (q * aref), "L_over_D": lift / drag if drag else None,
         "line_drag_N": line_drag, "applied_load_N": applied, "support_reaction_N": support,

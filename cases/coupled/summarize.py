@@ -61,6 +61,22 @@ def force_difference(rows):
     return worst
 
 
+def moment_difference(rows):
+    """Largest difference of the interface moment about the origin, fluid side vs structure side, over all
+    windows, relative to the largest moment component of the window; None without moment columns (adapters
+    before the Mx_fluid... columns)."""
+    if not rows or "Mx_fluid" not in rows[0]:
+        return None
+    worst = 0.0
+    for r in rows:
+        f = [float(r[k + "_fluid"]) for k in ("Mx", "My", "Mz")]
+        s = [float(r[k + "_structure"]) for k in ("Mx", "My", "Mz")]
+        scale = max(abs(x) for x in f)
+        if scale > 0:
+            worst = max(worst, max(abs(a - b) for a, b in zip(f, s)) / scale)
+    return worst
+
+
 def force_check(case):
     rows, _, _ = history(case, "time")
     worst = force_difference(rows)

@@ -4,7 +4,9 @@ the document with a table per knob, non-blank plots — and that the measured er
 second-order mesh convergence (Hencky from differences, sphere against its closed form, the projection's
 consistent and dual variants), second order in the safety factor (central differences), lower order for the
 lumped projection, smaller errors at tighter dynamic-relaxation tolerances, static answers that do not
-depend on the mass. Usage: test_accuracy_cost.py FSI WORK"""
+depend on the mass; coupled (added-mass drum against its exact answer): first order in the fluid step,
+smaller iteration errors at tighter tolerances, the staggered scheme stable below its added-mass limit and
+unstable far above it. Usage: test_accuracy_cost.py FSI COUPLING_DRIVER WORK"""
 import json
 import math
 import shutil
@@ -18,11 +20,12 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-fsi, work = Path(sys.argv[1]), Path(sys.argv[2])
+fsi, driver, work = Path(sys.argv[1]), Path(sys.argv[2]), Path(sys.argv[3])
 shutil.rmtree(work, ignore_errors=True)
 work.mkdir(parents=True)
 res_file = work / "accuracy_cost.json"
-subprocess.run(["/usr/bin/python3", str(ROOT / "scripts/accuracy_cost.py"), "--quick", "--fsi", str(fsi), "--out",
+subprocess.run(["/usr/bin/python3", str(ROOT / "scripts/accuracy_cost.py"), "--quick", "--fsi", str(fsi), "--coupling-driver",
+                str(driver), "--out",
                 str(work), "--json", str(res_file)], check=True)
 
 failures = []
@@ -44,7 +47,7 @@ res = json.loads(res_file.read_text())
 for heading in ("## Mesh refinement", "### Hencky", "### Pressurised sphere", "### Square airbag",
                 "## Time integration: safety factor", "## Time integration: selective mass scaling",
                 "## Static answers by dynamic relaxation", "## Projection between non-matching meshes",
-                "## Coupled knobs: not yet"):
+                "## Coupled knobs: fluid step", "## Coupled knobs on the sail: not yet"):
     check(heading in doc, f"document has '{heading}'")
 check(doc.count("what you buy") >= 6 and doc.count("× the time") >= 20, "document has computed 'what you buy' words")
 for study in res["mesh"]:
@@ -52,7 +55,7 @@ for study in res["mesh"]:
         check(f"| {r['level']} | {r['elements']} |" in doc, f"{study['name']}: table row for level {r['level']}")
 
 # Plots: present, not blank (a plot has axes, lines and text on a white background).
-for name in ("mesh", "time", "dr", "projection"):
+for name in ("mesh", "time", "dr", "projection", "coupled"):
     png = work / "img" / f"accuracy_cost_{name}.png"
     if not png.exists():
         check(False, f"{png.name} exists")
@@ -101,6 +104,19 @@ check(all(x < 1.6 for x in o["lumped"]), f"projection lumped: orders {o['lumped'
 check(all(r["unmapped"] == 0 for r in res["projection"]["rows"]), "projection: every quadrature point mapped")
 q = res["projection"]["quadrature"]
 check(q[-1]["error"] <= q[0]["error"], "quadrature: the finest level is not less accurate than level 1")
+
+# Coupled, the added-mass drum: the monolithic reference equals the exact free acceleration (checks the
+# problem), the lagged added-mass acceleration makes the window error first order, tighter tolerances give
+# smaller iteration errors, staggered is stable at m_a/m_s = 0.1 (< 1/3) and blows up at 5.
+cp = res["coupled"]
+check(abs(cp["monolithic"] / cp["exact"] - 1) < 1e-6, "coupled: monolithic run equals the exact answer to 1e-6")
+check(all(within(o, 0.8, 1.3) for o in cp["window_orders"]), f"coupled: window orders {cp['window_orders']} in [0.8, 1.3]")
+for acc in {r["acceleration"] for r in cp["tolerances"]}:
+    e = [r["error"] for r in cp["tolerances"] if r["acceleration"] == acc]
+    check(all(a > b for a, b in zip(e, e[1:])), f"coupled {acc}: iteration error falls with the tolerance {e}")
+stag = {r["added_mass"]: r for r in cp["schemes"] if r["scheme"] == "staggered"}
+check(stag[0.1]["finite"] and stag[0.1]["error"] < 0.01, "coupled: staggered stable and accurate at m_a/m_s = 0.1")
+check(not stag[5.0]["finite"], "coupled: staggered unstable at m_a/m_s = 5")
 
 if failures:
     sys.exit(f"{len(failures)} check(s) failed:\n  " + "\n  ".join(failures))

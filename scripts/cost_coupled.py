@@ -155,7 +155,8 @@ def coupled_plot(cp, path):
         ax.loglog([r["wall"] * 1e3 for r in rs], [r["error"] for r in rs], fmt, label=label)
         for r in rs:
             text = f"{r['window'] * 1e3:g}" if key == "windows" else f"N={r['subcycles']}"
-            ax.annotate(text, (r["wall"] * 1e3, r["error"]), textcoords="offset points", xytext=(4, 4), fontsize=7)
+            ax.annotate(text, (r["wall"] * 1e3, r["error"]), textcoords="offset points",
+                        xytext=(4, 4) if key == "windows" else (4, -11), fontsize=7)
     ax.set_xlabel("wall time [ms]")
     ax.set_ylabel("relative error vs exact")
     ax.set_title("Added-mass drum: fluid step and subcycling")

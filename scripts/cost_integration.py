@@ -178,7 +178,7 @@ def integration_plot(saf, ms, path):
                 label="safety factor")
     ax.set_xlabel("time.safety")
     ax.set_ylabel("wall time to the static state [s]")
-    ax.set_title("Hencky static answer: the step only costs")
+    ax.set_title("Hencky static answer: wall time against the safety factor")
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

@@ -5,6 +5,9 @@ import math
 
 def times(x):
     """A ratio as the doc prints it: 2 significant digits below 10, whole numbers above."""
+    if x >= 999.5:  # 3.1·10⁴ rather than 31417: the digits beyond the second mean nothing
+        e = int(f"{x:.1e}".split("e")[1])
+        return f"{x / 10 ** e:.1f}·10" + "".join("⁰¹²³⁴⁵⁶⁷⁸⁹"[int(c)] for c in str(e))
     return f"{x:.0f}" if x >= 9.95 else f"{x:.1f}"
 
 

@@ -195,7 +195,7 @@ def main():
 
     res = dict(quick=q, repeats=rep)
     step("mesh refinement")
-    res["mesh"] = [cost_mesh.mesh_study("hencky", [8, 16, 32] if q else [8, 16, 32, 64], rep, None if q else 128),
+    res["mesh"] = [cost_mesh.mesh_study("hencky", [8, 16, 32] if q else [8, 16, 32, 64], rep),
                    cost_mesh.mesh_study("sphere", [8, 16, 32] if q else [8, 16, 32, 64], rep),
                    cost_mesh.mesh_study("airbag", [8, 16] if q else [8, 16, 32], rep, None if q else 64)]
     step("safety factor")

@@ -66,9 +66,8 @@ def mesh_section(studies):
         md.append(f"### {title}\n")
         md.append(f"Reference: {s['reference_text']}." + (
             f" Also against the {s['fine']['level']} {st['level_name']} solution ({s['fine']['elements']} "
-            f"triangles, {s['fine']['value'] / u:.3f} {un}, {s['fine']['wall']:.1f} s), the converged value "
-            "of this model (the *error vs finest* leaves out the finest mesh's own error, at order p about "
-            "1/(2^p − 1) of the last row's)." if "fine" in s else "") + "\n")
+            f"triangles, {s['fine']['value'] / u:.3f} {un}, {s['fine']['wall']:.1f} s), the finest run: "
+            "*error vs finest* leaves out that run's own error." if "fine" in s else "") + "\n")
         fine = "fine" in s
         md.append(f"| {st['level_name']} | triangles | value [{un}] | error | "
                   + ("error vs finest | " if fine else "") + "steps | wall [s] | what you buy (from the row above) |")

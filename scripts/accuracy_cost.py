@@ -114,14 +114,16 @@ def summary_lines(res):
                                                k[0]["wall"], k[-1]["wall"])))
     c = [x for x in res["projection"]["rows"] if x["variant"] == "consistent"]
     out.append(("projection mesh (consistent)", buy(f"halving the mesh size ({c[-2]['n']} → {c[-1]['n']})",
-                                                    c[-2]["error"], c[-1]["error"], c[-2]["setup"], c[-1]["setup"])))
+                                                    c[-2]["error"], c[-1]["error"], c[-2]["setup"], c[-1]["setup"],
+                                                    cost="the setup time")))
     n = c[-1]["n"]
     d = next(x for x in res["projection"]["rows"] if x["variant"] == "dual" and x["n"] == n)
     out.append(("projection variant", buy(f"dual instead of consistent (n = {n})", c[-1]["error"], d["error"],
-                                          c[-1]["setup"], d["setup"])))
+                                          c[-1]["setup"], d["setup"], cost="the setup time")))
     q = res["projection"]["quadrature"]
     out.append(("quadrature level", buy(f"level {q[0]['level']} → {q[-1]['level']} (source 10× finer)", q[0]["error"],
-                                        q[-1]["error"], q[0]["setup"], q[-1]["setup"])))
+                                        q[-1]["error"], q[0]["setup"], q[-1]["setup"],
+                                        cost="the setup time")))
     if "coupled" in res:
         cp = res["coupled"]
         a, b = cp["windows"][0], cp["windows"][-1]

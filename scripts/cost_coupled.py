@@ -93,7 +93,8 @@ def coupled_section(cp):
           "Wall time: the coupling loop.\n",
           "![coupled knobs: error against wall time](img/accuracy_cost_coupled.png)\n",
           "**Fluid step (window)**, implicit IQN-ILS, tolerance 1e-8:\n",
-          "| window [ms] | windows | iterations per window | structure steps | centre [mm] | error | wall [ms] | what you buy (from the row above) |",
+          "| window [ms] | windows | iterations per window | structure steps | centre [mm] | error | wall [ms] | "
+          "what you buy (from the row above) |",
           "|---|---|---|---|---|---|---|---|"]
     for i, r in enumerate(cp["windows"]):
         words = ""

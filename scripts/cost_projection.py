@@ -97,10 +97,11 @@ def projection_section(pr):
         if i > 0:
             p = by[(r["variant"], sizes[i - 1])]
             words.append(buy(f"halving the mesh size ({p['n']} → {r['n']})", p["error"], r["error"], p["setup"],
-                             r["setup"]))
+                             r["setup"], cost="the setup time"))
         if r["variant"] != "consistent":
             c = by[("consistent", r["n"])]
-            words.append(buy(f"{r['variant']} instead of consistent", c["error"], r["error"], c["setup"], r["setup"]))
+            words.append(buy(f"{r['variant']} instead of consistent", c["error"], r["error"], c["setup"], r["setup"],
+                             cost="the setup time"))
         md.append(f"| {r['n']} | {r['source_nodes']} / {r['target_nodes']} | {r['variant']} | {r['error']:.2e} | "
                   f"{r['linear']:.1e} | {r['setup'] * 1e3:.2f} | {r['apply'] * 1e6:.1f} | {'; '.join(words)} |")
     md.append("\nObserved orders (RMS error, successive halvings): "
@@ -116,7 +117,8 @@ def projection_section(pr):
         words = ""
         if i > 0:
             p = q[i - 1]
-            words = buy(f"level {p['level']} → {r['level']}", p["error"], r["error"], p["setup"], r["setup"])
+            words = buy(f"level {p['level']} → {r['level']}", p["error"], r["error"], p["setup"], r["setup"],
+                        cost="the setup time")
         md.append(f"| {r['level']} | {r['error']:.2e} | {r['error_max']:.2e} | {r['setup'] * 1e3:.2f} | {words} |")
     md.append("\nThe error measured here is that of a smooth field carried from the fine source to the coarse "
               "target, where the 3-point rule per target triangle already integrates well. What the level is for "

@@ -11,7 +11,7 @@ def times(x):
     return f"{x:.0f}" if x >= 9.95 else f"{x:.1f}"
 
 
-def buy(change, e0, e1, t0, t1, floor=0.0):
+def buy(change, e0, e1, t0, t1, floor=0.0, cost="the time"):
     """'change: error 4.0× smaller, 7.9× the time' from the errors and times before (0) and after (1).
     Errors at or below `floor` (the reference's own precision) are not compared."""
     if e1 <= floor and e0 <= floor:
@@ -24,7 +24,7 @@ def buy(change, e0, e1, t0, t1, floor=0.0):
         err = f"error {times(e1 / e0)}× larger"
     if e0 > floor and e1 > floor and max(e0 / e1, e1 / e0) > 30:
         err += f" ({e0:.1e} → {e1:.1e})"
-    return f"{change}: {err}, {times(t1 / t0)}× the time"
+    return f"{change}: {err}, {times(t1 / t0)}× {cost}"
 
 
 def order(h, e):

@@ -6,7 +6,8 @@ docs/VALIDATION.md) has 4 digits; mesh-convergence errors below 1e-4 need more (
 
 Axisymmetric equilibrium on the reference radius R, deformed meridian x(R) = (r, z):
     d/dR (R S_r x') − S_θ (r/R) e_r + p r n = 0,   n = (−z', r')
-with stretches λ_r = |x'|, λ_θ = r/R, E = (λ² − 1)/2 and resultants S_r = Y/(1−ν²) (E_r + ν E_θ), S_θ likewise.
+with stretches λ_r = |x'|, λ_θ = r/R, E = (λ² − 1)/2 and resultants S_r = Y/(1−ν²) (E_r + ν E_θ), S_θ
+likewise.
 With q = R S_r x' the system (r, z, q) is first order; at the centre the stretch λ₀ is isotropic and the
 surface a paraboloid of curvature p / (2 S₀) (Young–Laplace). Shooting on λ₀ until r(a) = a (RK4, then a
 secant iteration); the answer is checked by halving the step.

@@ -110,7 +110,7 @@ def projection_section(pr):
     q = pr["quadrature"]
     md += [f"**Quadrature level** (consistent): a fine source ({q[0]['source_nodes']} nodes, 80×80 cells) onto a "
            f"10× coarser target ({q[0]['target_nodes']} nodes, 8×8 quads), the case where one 3-point rule per "
-           "target triangle samples the source too sparsely.\n",
+           "target triangle samples only a few source nodes (docs/PROJECTION.md names it for a higher level).\n",
            "| `--quadrature-level` | error (RMS) | max error | setup [ms] | what you buy (from the row above) |",
            "|---|---|---|---|---|"]
     for i, r in enumerate(q):

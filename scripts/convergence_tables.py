@@ -1,23 +1,17 @@
 #!/usr/bin/env python3
 """Mesh-convergence tables for docs/VALIDATION.md. Usage: scripts/convergence_tables.py [build/bin/fsi]
-Runs each case at several mesh sizes through `fsi run --set ...` and prints markdown tables."""
-import json
-import subprocess
+Runs each case at several mesh sizes through `fsi run --set ...` (scripts/fsi_runs.py) and prints markdown
+tables; scripts/accuracy_cost.py measures the same refinements against wall time."""
 import sys
-import tempfile
-from pathlib import Path
 
-root = Path(__file__).resolve().parent.parent
-fsi = Path(sys.argv[1]) if len(sys.argv) > 1 else root / "build/bin/fsi"
+import fsi_runs
+
+if len(sys.argv) > 1:
+    fsi_runs.set_fsi(sys.argv[1])
 
 
 def run(scene, sets):
-    with tempfile.TemporaryDirectory() as out:
-        cmd = [str(fsi), "run", str(root / scene), "--out", out, "--quiet", "--set", "output.interval=0"]
-        for s in sets:
-            cmd += ["--set", s]
-        subprocess.run(cmd, check=True)
-        return json.loads((Path(out) / "summary.json").read_text())
+    return fsi_runs.run(fsi_runs.ROOT / scene, sets)
 
 
 print("### Hencky: centre deflection (GL/SVK reference 33.14 mm)\n")

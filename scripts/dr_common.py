@@ -1,12 +1,8 @@
-"""Helpers shared by the dynamic-relaxation study scripts: run `fsi`, read summary.json, update a marked
-block of docs/DYNAMIC_RELAXATION.md."""
-import json
-import subprocess
-import tempfile
-from pathlib import Path
+"""Helpers shared by the dynamic-relaxation study scripts: the methods, a run of a cushion case (through
+fsi_runs.run), and updating a marked block of docs/DYNAMIC_RELAXATION.md."""
+import fsi_runs
+from fsi_runs import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
-FSI = ROOT / "build/bin/fsi"
 DOC = ROOT / "docs/DYNAMIC_RELAXATION.md"
 
 # label -> solver settings (the thesis' names; KDR is this project's default)
@@ -18,15 +14,12 @@ METHODS = {
 }
 
 
-def run(case, sets):
-    """Runs cases/structure/<case>/scene.yaml with --set assignments; returns summary.json as a dict."""
-    with tempfile.TemporaryDirectory() as out:
-        cmd = [str(FSI), "run", str(ROOT / "cases/structure" / case / "scene.yaml"), "--out", out, "--quiet",
-               "--set", "output.fields=[displacement]"]
-        for s in sets:
-            cmd += ["--set", s]
-        subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        return json.loads((Path(out) / "summary.json").read_text())
+def run(case, sets, repeats=1):
+    """Runs cases/structure/<case>/scene.yaml with --set assignments; returns summary.json as a dict (also for
+    a run that did not converge or diverged: exit codes 3 and 4 are results here). With repeats > 1 the
+    summary's "wall" is the median wall time of that many runs."""
+    return fsi_runs.run_timed(case, ["output.fields=[displacement]"] + list(sets), repeats=repeats,
+                              ok_codes=(0, 3, 4))
 
 
 def replace_block(name, text):

@@ -49,6 +49,8 @@ SETTINGS = {
     "model": (["laminar", "kOmegaSST"], "laminar", None, None, "flow model"),
     "resolution": (list(RESOLUTIONS), "coarse", None, None, "mesh resolution"),
     "steps": ("int", 60, 1, 1000000, "time steps of the run"),
+    "write_interval": ("int", 0, 0, 1000000,
+                       "write the fields (and the coupled canopy's frames) every this many steps; 0: at the end only"),
     "rigid_steps": ("int", 0, 0, 1000000,
                     "coupled yes: steps of the rigid wing before the coupling starts; their flow is the coupled "
                     "run's initial field (the impulsive start's pressure transient never reaches the canopy)"),
@@ -453,11 +455,13 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
   }}
 """
     def control_dict(libs, fsi, steps, end):
+        every = steps if s["write_interval"] == 0 or libs == "" and fsi == "" and s["coupled"] == "yes" \
+            else min(steps, s["write_interval"])
         return f"""\
 application pimpleFoam;
 // deltaT = courant {s['courant']:g} * finest wing cell {d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {steps} steps
 startFrom latestTime; startTime 0; stopAt endTime; endTime {end:.9g}; deltaT {d['deltaT']:.9g};
-writeControl timeStep; writeInterval {steps}; purgeWrite 0; writeFormat ascii; writePrecision 10;
+writeControl timeStep; writeInterval {every}; purgeWrite 0; writeFormat ascii; writePrecision 10;
 writeCompression off; timeFormat general; timePrecision 8; runTimeModifiable false; adjustTimeStep no;
 {libs}functions
 {{
@@ -775,6 +779,7 @@ def summary(case):
         print(f"moved mesh at the end: checkMesh {'OK' if mf['ok'] else 'failed ' + str(mf['failed_checks'])}, "
               f"max non-ortho {mf['max_non_orthogonality']}, max skewness {mf['max_skewness']}")
     if "coupled" in out and out["coupled"].get("windows"):
+        write_table(case, out)
         c = out["coupled"]
         print(f"coupled: {c['windows']} windows, {c['iterations_mean']:.2f} iterations per window (at most "
               f"{c['iterations_max']}, {c['not_converged']} not converged); interface force fluid vs structure "
@@ -794,6 +799,38 @@ def summary(case):
               f"{100 * fl['CD_spread_last_fifth']:.2f} %); Helmbold CL {est['CL']:.3f} (AR {d['aspect_ratio']:.2f}, "
               f"alpha {d['alpha_effective_deg']:.2f} deg from zero lift); "
               f"{fl.get('wall_s_per_step', float('nan')):.3f} s per step")
+
+
+def write_table(case, out):
+    """summary.md: the coupled run's answers in one table, with the references they are compared with."""
+    c, e, d = out["coupled"], out["estimate"], out["reference"]
+    rows = [
+        ("windows (fluid steps), coupling", f"{c['windows']}, {c['iterations_mean']:.2f} iterations per window", ""),
+        ("lift, drag, side force [N]", f"{c['lift_N']:.2f}, {c['drag_N']:.2f}, {c['side_N']:.3f}", ""),
+        ("CL, CD, L/D", f"{c['CL']:.4f}, {c['CD']:.4f}, {c['L_over_D']:.2f}",
+         f"Helmbold (AR {d['aspect_ratio']:.2f}): CL {e['CL']:.3f}; ram-air wings L/D 3-6 with lines and payload"),
+        ("pitch of the centre chord [deg]", f"{c['pitch_deg']:.2f}", "design: the wing's incidence"),
+        ("anchor + toggles reaction [N]", v3(c["support_reaction_N"]), "minus the applied load at equilibrium"),
+        ("applied load (flow + ram pressure + line drag) [N]", v3(c["applied_load_N"]),
+         f"balance {c['equilibrium_relative']:.1e}"),
+        ("line drag [N]", v3(c["line_drag_N"]), ""),
+        ("anchor moments about the origin [N m]", v3(c["anchor_moment_Nm"]), ""),
+        ("interface force fluid vs structure (max over windows)", f"{c['force_fluid_vs_structure_max_relative']:.1e}",
+         "conservative transfer: round-off"),
+        ("interface moment fluid vs structure (max over windows)",
+         f"{c['moment_fluid_vs_structure_max_relative'] or float('nan'):.1e}", "the two surfaces' gap (docs/RAMAIR.md)"),
+        ("line tension max; left/right sums [N]",
+         f"{c['line_tension_max_N']:.2f}; {c['lines_left_sum_N']:.2f} / {c['lines_right_sum_N']:.2f}", "mirror symmetry"),
+        ("brake tension left/right [N]", f"{c['brake_tension_left_N']:.2f} / {c['brake_tension_right_N']:.2f}", ""),
+        ("skin principal stress mean, max [kPa]", f"{c['skin_stress_mean_Pa'] / 1e3:.1f}, {c['skin_stress_max_Pa'] / 1e3:.1f}",
+         "Kalro-Tezduyar: 758, 4337 (110, 629 lb/in^2)"),
+        ("max / mean", f"{c['stress_max_over_mean']:.2f}", "Kalro-Tezduyar: 5.7"),
+    ]
+    with open(os.path.join(case, "summary.md"), "w") as f:
+        f.write(f"# {out['case']}: coupled ram-air wing, {out['settings']['speed']:g} m/s, q = {d['q_Pa']:.4g} Pa, "
+                f"Re {d['Re']:.3g}\n\n| quantity | this run | reference |\n|---|---|---|\n")
+        for r in rows:
+            f.write(f"| {r[0]} | {r[1]} | {r[2]} |\n")
 
 
 def coupled_summary(case, d):

@@ -49,32 +49,28 @@ def history(case, probe):
     return rows, t, v
 
 
-def force_difference(rows):
-    """Largest relative difference of the interface force, fluid side vs structure side, over all windows."""
-    worst = 0.0
-    for r in rows:
-        f = [float(r[k + "_fluid"]) for k in ("Fx", "Fy", "Fz")]
-        s = [float(r[k + "_structure"]) for k in ("Fx", "Fy", "Fz")]
-        scale = max(abs(x) for x in f)
-        if scale > 0:
-            worst = max(worst, max(abs(a - b) for a, b in zip(f, s)) / scale)
-    return worst
-
-
-def moment_difference(rows):
-    """Largest difference of the interface moment about the origin, fluid side vs structure side, over all
-    windows, relative to the largest moment component of the window; None without moment columns (adapters
-    before the Mx_fluid... columns)."""
-    if not rows or "Mx_fluid" not in rows[0]:
+def side_difference(rows, quantity):
+    """Largest relative difference of an interface total ('F' force, 'M' moment about the origin), fluid side
+    vs structure side, over all windows, relative to the window's largest fluid-side component; None if the
+    columns are missing (moments: adapters before the Mx_fluid... columns)."""
+    if not rows or quantity + "x_fluid" not in rows[0]:
         return None
     worst = 0.0
     for r in rows:
-        f = [float(r[k + "_fluid"]) for k in ("Mx", "My", "Mz")]
-        s = [float(r[k + "_structure"]) for k in ("Mx", "My", "Mz")]
+        f = [float(r[quantity + c + "_fluid"]) for c in "xyz"]
+        s = [float(r[quantity + c + "_structure"]) for c in "xyz"]
         scale = max(abs(x) for x in f)
         if scale > 0:
             worst = max(worst, max(abs(a - b) for a, b in zip(f, s)) / scale)
     return worst
+
+
+def force_difference(rows):
+    return side_difference(rows, "F") or 0.0
+
+
+def moment_difference(rows):
+    return side_difference(rows, "M")
 
 
 def force_check(case):

@@ -18,17 +18,7 @@
 # Usage: run_ramair_fluid_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -uo pipefail
 src=$1 build=$2 work=$3
-for app in blockMesh surfaceFeatureExtract snappyHexMesh checkMesh pimpleFoam; do
-  command -v "$app" > /dev/null || { echo "SKIP: $app not found (OpenFOAM is not installed)"; exit 77; }
-done
-fail() { echo "FAIL: $*"; exit 1; }
-rm -rf "$work" && mkdir -p "$work/ramair-kt" || exit 1
-case_files=$(git -C "$src" ls-files cases/coupled/ramair-kt)
-[ -n "$case_files" ] || fail "no tracked files in cases/coupled/ramair-kt"
-for f in $case_files; do cp "$src/$f" "$work/ramair-kt/"; done
-unset FSI_SHARE_DIR
-. "$build/share/fsi/fsi-env.sh"
-cd "$work/ramair-kt" || exit 1
+. "$(dirname "$0")/ramair_test_case.sh"
 
 # Bad settings: refused with the file and line, exit 2, nothing made.
 bad() {
@@ -48,6 +38,9 @@ bad "model kEpsilon" "laminar, kOmegaSST"
 bad "angle nan" "must be a number"
 bad 'courant $(touch${IFS}/tmp/ramair-injected)' "must be a number"
 bad "courant 4 5" "expected 'key value'"
+bad $'stl_bulge 0\ncoupled yes' "the structure's own surface"
+bad $'mesh_motion none\ncoupled yes' "mesh_motion none with coupled yes"
+bad "load_relaxation 0" "outside"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 

@@ -263,9 +263,11 @@ awk '/\[install-deps\] (done|all [0-9]+ packages present)/ { inst = $1 }
      { last = $1 }
      END { printf "[fresh]   inside main.sh: installs %d s, build %d s, main job %d s\n", inst, built - inst, last - built }' \
   "$logs/main.log"
-for f in results/ramair-kt/{summary.json,ramair-kt.foam,log.pimpleFoam} results/ramair-kt/structure/{results.xdmf,results.h5,coupling.csv} results/ramair-kt/plots/{interface_force,iterations,probes,structure}.png; do
+for f in results/ramair-kt/{summary.json,summary.md,log.pimpleFoam} results/ramair-kt/structure/{results.xdmf,results.h5,coupling.csv} results/ramair-kt/plots/{interface_force,iterations,probes,structure}.png; do
   [ -s "$root$home/parachute-fsi/$f" ] || { say "scripts/main.sh wrote no $f"; exit 1; }
 done
+# ParaView's OpenFOAM reader opens an empty CASE.foam file: it must exist, not have content
+[ -e "$root$home/parachute-fsi/results/ramair-kt/ramair-kt.foam" ] || { say "scripts/main.sh wrote no results/ramair-kt/ramair-kt.foam"; exit 1; }
 
 phase "scripts/test.sh (as $user)" "$logs/test.log" as_user "cd $home/parachute-fsi && scripts/test.sh"
 # The adapter and coupled tests exist only when the OpenFOAM headers were installed: a suite without them

@@ -461,9 +461,9 @@ OptionSchema couplingOptionSchema() {
   coupled.push_back(wordSpec("meshGuard", OptionType::Switch, "yes", {},
                              "stop with a diagnosis when the moving mesh inverts a cell or crushes it below "
                              "minVolumeRatio (checked after every fluid solve)"));
-  // 0.01: two orders of magnitude below any shrinkage of the test cases' meshes, which stay above about 0.5
-  // (docs/COUPLING.md "When the run stops"), yet above the point where a cell's Courant number has grown a
-  // hundredfold at a fixed step; 0 keeps only the inversion checks.
+  // 0.01: two orders of magnitude below the shrinkage of the test cases' meshes (they stay above 0.96), and a
+  // stop before a cell's Courant number can have grown a hundredfold at the fixed step (docs/COUPLING.md
+  // "When the run stops"); 0 keeps only the inversion checks.
   coupled.push_back(realOption("minVolumeRatio", "0.01", Bound{0, true}, Bound{1, false},
                                "meshGuard: a cell below this fraction of its initial volume stops the run"));
   coupled.push_back(wordSpec("verifyCheckpoint", OptionType::Switch, "no", {},

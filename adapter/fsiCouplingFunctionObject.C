@@ -471,11 +471,15 @@ void fsiCoupling::checkMesh() {
       WarningInFunction << "fsiCoupling: writing the structure's last stable state: " << e.what() << endl;
     }
   }
-  FatalErrorInFunction << "fsiCoupling: mesh guard: t = " << time_.value() << " s, window "
-                       << (Pstream::master() ? scheme_->window() : -1) << ": "
+  // Every rank stops with the same message (the window and the structure's time live on the master).
+  label window = Pstream::master() ? label(scheme_->window()) : 0;
+  scalar stateTime = Pstream::master() ? namedTime(scheme_->time()) : 0.0;
+  Pstream::scatter(window);
+  Pstream::scatter(stateTime);
+  FatalErrorInFunction << "fsiCoupling: mesh guard: t = " << time_.value() << " s, window " << window << ": "
                        << meshGuard_->describe(r).c_str() << nl
                        << "The structure's last stable state (end of the last accepted window, t = "
-                       << (Pstream::master() ? namedTime(scheme_->time()) : -1.0) << " s) is in "
+                       << stateTime << " s) is in "
                        << time_.globalPath() / "structure" / "last_stable_state.h5"
                        << " and the last frame of structure/results.h5; the fluid's last written time "
                        << "directory is left as it is." << exit(FatalError);

@@ -119,6 +119,7 @@ fsiMeshGuard::Report fsiMeshGuard::check() {
       }
     }
     const label at = ownerOfMin(nearest, r.distance);
+    r.faceRank = at;
     const bool near = Pstream::myProcNo() == at && face >= 0;
     const label i = fromRank(at, near ? patchIndex : label(0));
     r.face = fromRank(at, near ? face : label(0));
@@ -164,9 +165,11 @@ std::string fsiMeshGuard::describe(const Report& r) const {
                   r.badFaceCentre.x(), r.badFaceCentre.y(), r.badFaceCentre.z());
     s += buf;
   }
-  std::snprintf(buf, sizeof buf, "    Nearest interface face: patch %s, face %d at (%g %g %g), %g m away.\n",
-                r.patch.c_str(), int(r.face), r.faceCentre.x(), r.faceCentre.y(), r.faceCentre.z(),
-                r.distance);
+  std::snprintf(buf, sizeof buf,
+                "    Nearest interface face: patch %s, face %d%s at (%g %g %g), %g m away.\n",
+                r.patch.c_str(), int(r.face),
+                Pstream::parRun() ? (" on rank " + std::to_string(r.faceRank)).c_str() : "", r.faceCentre.x(),
+                r.faceCentre.y(), r.faceCentre.z(), r.distance);
   s += buf;
   s += "    The interface moved farther than the mesh motion can follow. Remedies: a smaller structural "
        "motion "

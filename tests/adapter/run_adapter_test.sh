@@ -42,7 +42,8 @@
 #                     time directories is the reference: the guard stops (exit != 0, diagnosis, no trap) at the
 #                     first time checkMesh fails, with checkMesh's count of wrong-oriented faces and its smallest
 #                     cell volume; with minVolumeRatio 0.5 it stops at the first time checkMesh's smallest volume is
-#                     below half the initial cell (1e-3 m3 from blockMeshDict); structure/last_stable_state.h5
+#                     below half the initial cell (1e-3 m3 from blockMeshDict); the same on 2 ranks;
+#                     structure/last_stable_state.h5
 #                     holds the window before (also with scheme implicit); the normal coupled run passes and
 #                     reports its smallest ratio
 # Usage: run_adapter_test.sh MODE ADAPTER_LIB WORK_DIR
@@ -551,21 +552,21 @@ PY
     [ -n "$first_bad" ] || fail "checkMesh never found the folded mesh"
     [ -n "$t_half" ] || fail "checkMesh never found a cell below half its volume"
     echo "checkMesh: smallest volume below 5e-4 m3 first at t = $t_half; $bad_faces wrong-oriented faces first at t = $first_bad (smallest volume $bad_vmin m3)"
-    # guarded DIR EXTRA: the overloaded run with the guard; checks the stop and sets stop_t, ratio, volume
+    # guarded DIR EXTRA [NP]: the overloaded run with the guard; checks the stop and sets stop_t, volume
     guarded() {
-      local dir=$1 extra=$2
+      local dir=$1 extra=$2 np=${3:-1}
       prepare "$dir"
       sed -i 's/value: 0.2}/value: 50}/' "$dir/structure.yaml"
       [ -n "$extra" ] && fsi_option "$dir" "$extra"
-      solve "$dir"
+      solve "$dir" "$np"
       [ $rc -ne 0 ] || fail "the guard did not stop the overloaded run ($extra)"
       ! grep -q "sigFpe" "$log" || fail "the run died on a floating-point trap instead of the guard's diagnosis"
       for e in "mesh guard: t = " "the moving mesh has degraded" "Worst cell: " "Nearest interface face: patch bottom" \
                "Remedies: " "loadRelaxation" "last_stable_state.h5"; do
         grep -qF -- "$e" "$log" || fail "the diagnosis lacks: $e"
       done
-      stop_t=$(sed -n 's/.*mesh guard: t = \([^ ]*\) s.*/\1/p' "$log")
-      volume=$(sed -n 's/.*Worst cell: .*: volume \([^ ]*\) m3, initial \([^ ]*\) m3, volume ratio \([^;]*\);.*/\1 \2 \3/p' "$log")
+      stop_t=$(sed -n 's/.*mesh guard: t = \([^ ]*\) s.*/\1/p' "$log" | head -1)
+      volume=$(sed -n 's/.*Worst cell: .*: volume \([^ ]*\) m3, initial \([^ ]*\) m3, volume ratio \([^;]*\);.*/\1 \2 \3/p' "$log" | head -1)
       echo "guard ($extra): $(grep -m1 "mesh guard: t = " "$log" | cut -c1-160)"
       # The last stable state is the window before the stop.
       /usr/bin/python3 - "$dir/structure/last_stable_state.h5" "$stop_t" <<'PY' || fail "no structure/last_stable_state.h5 at the window before"
@@ -582,6 +583,10 @@ PY
     set -- $volume
     close "$1" "$bad_vmin" 1e-6 || fail "the worst cell's volume differs from checkMesh's smallest volume"
     close "$2" 1e-3 1e-9 || fail "the initial cell volume is not blockMeshDict's 0.1 x 0.1 x 0.1 m"
+    # On 2 ranks (the cavity cut across the bottom): the same stop, reduced over the ranks.
+    guarded "$work/parallel" "" 2
+    grep -q "$bad_faces face(s) with wrong-oriented pyramids" "$log" || fail "2 ranks: the bad-face count differs from checkMesh's"
+    [ "$stop_t" = "$first_bad" ] || fail "2 ranks: the guard stopped at $stop_t, checkMesh first fails at $first_bad"
     # Implicit: a stop in a later pass of a window (the first pass, without extrapolation, repeats the last
     # window's shape) still writes the state of the window's start, not the structure after a pass.
     guarded "$work/implicit" "scheme implicit; extrapolation 0;"

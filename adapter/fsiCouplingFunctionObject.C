@@ -174,6 +174,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   segmentStart_ = time_.value();
   const auto& pd = mesh_.lookupObject<pointVectorField>("pointDisplacement");
   for (const label id : patchIDs_) interfaces_.emplace_back(new fsiInterfacePatch(mesh_, id, pd));
+  if (o.flag("meshGuard")) meshGuard_.reset(new fsiMeshGuard(mesh_, patchIDs_, pd, o.real("minVolumeRatio")));
   // restoreMeshPoints is an option of the implicit scheme only (the staggered one never repeats a step).
   checkpoint_.reset(
       new fsiFluidCheckpoint(mesh_, verifyCheckpoint_ || !implicit_ || o.flag("restoreMeshPoints")));
@@ -450,10 +451,38 @@ void fsiCoupling::writeStructure() {
   structure_->writeState(std::string(stateFile(time_.timePath())), arrays);
 }
 
-void fsiCoupling::keepLastStableState() {
-  structure_->restoreCheckpoint();
+void fsiCoupling::keepLastStableState(bool restore) {
+  if (restore) structure_->restoreCheckpoint();
   structure_->writeResults(namedTime(scheme_->time()));
   structure_->writeState(std::string(time_.globalPath() / "structure" / "last_stable_state.h5"));
+}
+
+void fsiCoupling::checkMesh() {
+  if (!meshGuard_) return;
+  const fsiMeshGuard::Report r = meshGuard_->check();
+  if (!r.failed) return;
+  // The structure has not taken this pass's load yet: it is at the end of the last accepted window, except
+  // after an earlier pass of an implicit window, which its checkpoint (the window's start) undoes.
+  if (Pstream::master()) {
+    const fsiFloatingPointTrapsOff noTraps;
+    try {
+      keepLastStableState(implicit_ && scheme_->iteration() > 0);
+    } catch (const std::exception& e) {
+      WarningInFunction << "fsiCoupling: writing the structure's last stable state: " << e.what() << endl;
+    }
+  }
+  // Every rank stops with the same message (the window and the structure's time live on the master).
+  label window = Pstream::master() ? label(scheme_->window()) : 0;
+  scalar stateTime = Pstream::master() ? namedTime(scheme_->time()) : 0.0;
+  Pstream::scatter(window);
+  Pstream::scatter(stateTime);
+  FatalErrorInFunction << "fsiCoupling: mesh guard: t = " << time_.value() << " s, window " << window << ": "
+                       << meshGuard_->describe(r).c_str() << nl
+                       << "The structure's last stable state (end of the last accepted window, t = "
+                       << stateTime << " s) is in "
+                       << time_.globalPath() / "structure" / "last_stable_state.h5"
+                       << " and the last frame of structure/results.h5; the fluid's last written time "
+                       << "directory is left as it is." << exit(FatalError);
 }
 
 void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads, bool finished) {
@@ -548,6 +577,8 @@ bool fsiCoupling::execute() {
          << gMax(mag(mesh_.points() - firstPass_.x)) << endl;
   }
 
+  // Before the structure takes a load computed on a crushed mesh (its time is reported on its own).
+  checkMesh();
   const auto t0 = Clock::now();
   vector fluidTotal;
   const std::vector<double> loads = structureLoads(fluidTotal);
@@ -627,6 +658,11 @@ bool fsiCoupling::end() {
          << structure_->structuralSteps() - stepsAtStart_ << " structural steps" << nl << "[fsi] wall time "
          << wall << " s: transfer " << tTransfer_ << " s, structure " << tStructure_ << " s, checkpoints "
          << tCheckpoint_ << " s = " << 100.0 * ours / max(wall, 1e-300) << " % of the run" << endl;
+    if (meshGuard_)
+      Info << "[fsi] mesh guard: smallest cell volume ratio " << meshGuard_->worstRatio()
+           << " (at t = " << meshGuard_->worstRatioTime() << " s; stop below " << meshGuard_->minVolumeRatio()
+           << "), largest non-orthogonality " << meshGuard_->maxNonOrthSeen() << " deg, checks "
+           << meshGuard_->seconds() << " s" << endl;
     const fsi::coupling::TimingSegment seg = timingSegment(wall);
     if (!timing_->earlier().empty()) {
       const fsi::coupling::TimingSegment all = timing_->total(seg);

@@ -458,6 +458,14 @@ OptionSchema couplingOptionSchema() {
                                 "a repeated step starts from the first pass's mesh points (exact repeat)");
   restore.when = {kImplicit};
   coupled.push_back(restore);
+  coupled.push_back(wordSpec("meshGuard", OptionType::Switch, "yes", {},
+                             "stop with a diagnosis when the moving mesh inverts a cell or crushes it below "
+                             "minVolumeRatio (checked after every fluid solve)"));
+  // 0.01: two orders of magnitude below the shrinkage of the test cases' meshes (they stay above 0.96), and a
+  // stop before a cell's Courant number can have grown a hundredfold at the fixed step (docs/COUPLING.md
+  // "When the run stops"); 0 keeps only the inversion checks.
+  coupled.push_back(realOption("minVolumeRatio", "0.01", Bound{0, true}, Bound{1, false},
+                               "meshGuard: a cell below this fraction of its initial volume stops the run"));
   coupled.push_back(wordSpec("verifyCheckpoint", OptionType::Switch, "no", {},
                              "debug: solve every pass twice from the checkpoint, report the differences"));
   OptionSpec progress = integerOption("progress", "", Bound{0, true}, std::nullopt,

@@ -34,8 +34,18 @@
 #   equilibrium     : structureMode equilibrium with loadRelaxation 0.3, fluid step 1 s: the bottom settles to the
 #                     static arc of a membrane strip under 0.2 Pa (closed form) with the fluid force gone (force
 #                     balance) and the structure's static residual small; 100 pseudo-steps per window in
-#                     coupling.csv; without load relaxation the same case does not settle; a restart at window 4
+#                     coupling.csv; without load relaxation the same case does not settle (its shapes grow until
+#                     the mesh guard stops it); a restart at window 4
 #                     continues the relaxed load (windows 5-8 as uninterrupted)
+#   mesh-guard      : the cavity bottom under 250 times its load (50 Pa) drags the mesh until it folds; without the
+#                     guard pimpleFoam dies on a floating-point trap. OpenFOAM's checkMesh on that unguarded run's
+#                     time directories is the reference: the guard stops (exit != 0, diagnosis, no trap) at the
+#                     first time checkMesh fails, with checkMesh's count of wrong-oriented faces and its smallest
+#                     cell volume; with minVolumeRatio 0.5 it stops at the first time checkMesh's smallest volume is
+#                     below half the initial cell (1e-3 m3 from blockMeshDict); the same on 2 ranks;
+#                     structure/last_stable_state.h5
+#                     holds the window before (also with scheme implicit); the normal coupled run passes and
+#                     reports its smallest ratio
 # Usage: run_adapter_test.sh MODE ADAPTER_LIB WORK_DIR
 set -uo pipefail
 mode=$1 lib=$2 work=$3
@@ -383,8 +393,14 @@ PY
       fsi_option "$work/omega$w" "structureMode equilibrium; loadRelaxation $w; progress 0;"
       set_entry "$work/omega$w" deltaT 1; set_entry "$work/omega$w" endTime 30; set_entry "$work/omega$w" writeInterval 30
       solve "$work/omega$w"
-      [ $rc -eq 0 ] || fail "loadRelaxation $w exited with $rc"
     done
+    log="$work/omega0.3/log.pimpleFoam"
+    [ -f "$log" ] && grep -q "^End" "$log" || fail "loadRelaxation 0.3 did not run to the end"
+    # Without relaxation the shapes alternate and grow until the interface turns a face of the fluid mesh over
+    # (window 22): the mesh guard stops the run there, naming loadRelaxation among the remedies.
+    log="$work/omega1/log.pimpleFoam"
+    grep -q "the moving mesh has degraded" "$log" && grep -q "loadRelaxation" "$log" \
+      || fail "loadRelaxation 1: the growing oscillation was not stopped by the mesh guard"
     grep -q "equilibrium mode: 100 damped pseudo-steps per window (kinetic damping), load relaxation 0.3" \
       "$work/omega0.3/log.pimpleFoam" || fail "no start-up line for the equilibrium mode"
     # A restart during the transient (window 4 of 8) continues the relaxed load (restart state `applied_loads`):
@@ -428,7 +444,7 @@ assert Ff <= 1e-4 * applied and Fs <= 1e-4 * applied, "the fluid still pushes: n
 assert res <= 1e-3, "the structure is not in equilibrium"
 assert abs(z[-1] - z[-2]) <= 1e-6 * exact, "the shape still changes"
 z1 = [float(x["mid_z"]) for x in rows("omega1")]
-print(f"omega 1: mid-point rise {z1[-1]:.6g} m after 30 windows, static residual {float(rows('omega1')[-1]['equilibrium_residual']):.2g}")
+print(f"omega 1: mid-point rise {z1[-1]:.6g} m after {len(z1)} windows (mesh guard stop), static residual {float(rows('omega1')[-1]['equilibrium_residual']):.2g}")
 assert abs(z1[-1] - exact) > 1e-2 * exact, "without load relaxation the oscillation should not settle"
 zr = [float(x["mid_z"]) for x in rows("restart")]
 worst = max(abs(a - b) for a, b in zip(zr[4:8], z[4:8])) / exact
@@ -510,6 +526,87 @@ check("every7", list(range(7, 50, 7)) + [50], True)
 check("default", list(range(2, 51, 2)), False)
 check("off", [], False)
 PY
+    ;;
+  mesh-guard)
+    # The unguarded run, every window written: the reference meshes.
+    prepare "$work/free"
+    sed -i 's/value: 0.2}/value: 50}/' "$work/free/structure.yaml"
+    set_entry "$work/free" writeInterval 1
+    fsi_option "$work/free" "meshGuard no;"
+    solve "$work/free"
+    [ $rc -ne 0 ] || fail "the overloaded cavity must break its mesh without the guard (the case lost its point)"
+    # checkMesh on each written time until it first fails: that time, its bad-face count and smallest volume.
+    first_bad="" ; t_half=""
+    for t in $(cd "$work/free" && ls -d [0-9]* | grep -v '^0$' | sort -g); do
+      (cd "$work/free" && checkMesh -time "$t" > "log.checkMesh.$t" 2>&1)
+      vmin=$(sed -n 's/.*Min volume = \([^ ]*\)\. .*/\1/p' "$work/free/log.checkMesh.$t")
+      [ -n "$vmin" ] || fail "no Min volume from checkMesh at $t"
+      [ -z "$t_half" ] && /usr/bin/python3 -c "import sys; sys.exit(0 if float(sys.argv[1]) < 0.5e-3 else 1)" "$vmin" && t_half=$t
+      if grep -q "incorrectly oriented" "$work/free/log.checkMesh.$t"; then
+        first_bad=$t
+        bad_faces=$(sed -n 's/.*Error in face pyramids: \([0-9]*\) faces.*/\1/p' "$work/free/log.checkMesh.$t")
+        bad_vmin=$vmin
+        break
+      fi
+    done
+    [ -n "$first_bad" ] || fail "checkMesh never found the folded mesh"
+    [ -n "$t_half" ] || fail "checkMesh never found a cell below half its volume"
+    echo "checkMesh: smallest volume below 5e-4 m3 first at t = $t_half; $bad_faces wrong-oriented faces first at t = $first_bad (smallest volume $bad_vmin m3)"
+    # guarded DIR EXTRA [NP]: the overloaded run with the guard; checks the stop and sets stop_t, volume
+    guarded() {
+      local dir=$1 extra=$2 np=${3:-1}
+      prepare "$dir"
+      sed -i 's/value: 0.2}/value: 50}/' "$dir/structure.yaml"
+      [ -n "$extra" ] && fsi_option "$dir" "$extra"
+      solve "$dir" "$np"
+      [ $rc -ne 0 ] || fail "the guard did not stop the overloaded run ($extra)"
+      ! grep -q "sigFpe" "$log" || fail "the run died on a floating-point trap instead of the guard's diagnosis"
+      for e in "mesh guard: t = " "the moving mesh has degraded" "Worst cell: " "Nearest interface face: patch bottom" \
+               "Remedies: " "loadRelaxation" "last_stable_state.h5"; do
+        grep -qF -- "$e" "$log" || fail "the diagnosis lacks: $e"
+      done
+      stop_t=$(sed -n 's/.*mesh guard: t = \([^ ]*\) s.*/\1/p' "$log" | head -1)
+      volume=$(sed -n 's/.*Worst cell: .*: volume \([^ ]*\) m3, initial \([^ ]*\) m3, volume ratio \([^;]*\);.*/\1 \2 \3/p' "$log" | head -1)
+      echo "guard ($extra): $(grep -m1 "mesh guard: t = " "$log" | cut -c1-160)"
+      # The last stable state is the window before the stop.
+      /usr/bin/python3 - "$dir/structure/last_stable_state.h5" "$stop_t" <<'PY' || fail "no structure/last_stable_state.h5 at the window before"
+import sys, h5py
+t = h5py.File(sys.argv[1]).attrs["time"]
+print(f"last stable state at t = {t:g}")
+sys.exit(0 if abs(t - (float(sys.argv[2]) - 0.01)) < 1e-9 else 1)
+PY
+      [ ! -d "$dir/$stop_t" ] || fail "the guard wrote the broken time $stop_t"
+    }
+    guarded "$work/guard" ""
+    grep -q "$bad_faces face(s) with wrong-oriented pyramids" "$log" || fail "the guard's bad-face count differs from checkMesh's ($bad_faces)"
+    [ "$stop_t" = "$first_bad" ] || fail "the guard stopped at $stop_t, checkMesh first fails at $first_bad"
+    set -- $volume
+    close "$1" "$bad_vmin" 1e-6 || fail "the worst cell's volume differs from checkMesh's smallest volume"
+    close "$2" 1e-3 1e-9 || fail "the initial cell volume is not blockMeshDict's 0.1 x 0.1 x 0.1 m"
+    # On 2 ranks (the cavity cut across the bottom): the same stop, reduced over the ranks.
+    guarded "$work/parallel" "" 2
+    grep -q "$bad_faces face(s) with wrong-oriented pyramids" "$log" || fail "2 ranks: the bad-face count differs from checkMesh's"
+    [ "$stop_t" = "$first_bad" ] || fail "2 ranks: the guard stopped at $stop_t, checkMesh first fails at $first_bad"
+    # Implicit: a stop in a later pass of a window (the first pass, without extrapolation, repeats the last
+    # window's shape) still writes the state of the window's start, not the structure after a pass.
+    guarded "$work/implicit" "scheme implicit; extrapolation 0;"
+    passes=$(grep -c "^Time = $stop_t\$" "$log")
+    [ "$passes" -ge 2 ] || fail "the implicit run stopped in the window's first pass: the restore is not tested"
+    echo "implicit: stopped in pass $passes of the window"
+    guarded "$work/ratio" "minVolumeRatio 0.5;"
+    grep -q "shrunk below minVolumeRatio 0.5 of their initial volume" "$log" || fail "the ratio stop does not say so"
+    [ "$stop_t" = "$t_half" ] || fail "minVolumeRatio 0.5 stopped at $stop_t, checkMesh's volume falls below 5e-4 m3 at $t_half"
+    set -- $volume
+    /usr/bin/python3 -c "import sys; r = float(sys.argv[1]); sys.exit(0 if r < 0.5 else 1)" "$3" || fail "the reported ratio $3 is not below 0.5"
+    # The normal run: no stop, the smallest ratio in the final report.
+    prepare "$work/normal"
+    solve "$work/normal"
+    [ $rc -eq 0 ] || fail "the normal coupled run stopped (exit $rc)"
+    ! grep -q "the moving mesh has degraded" "$log" || fail "the guard fired on the normal run"
+    line=$(grep "^\[fsi\] mesh guard: smallest cell volume ratio" "$log") || fail "no mesh guard line in the final report"
+    echo "$line"
+    ratio=$(echo "$line" | sed 's/.*volume ratio \([^ ]*\) .*/\1/')
+    /usr/bin/python3 -c "import sys; r = float(sys.argv[1]); sys.exit(0 if 0.01 < r < 1 else 1)" "$ratio" || fail "normal run's ratio $ratio"
     ;;
   *) fail "unknown mode $mode" ;;
 esac

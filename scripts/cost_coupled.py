@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import fsi_runs  # noqa: E402
-from cost_words import buy, fmt_orders, order  # noqa: E402
+from cost_words import buy, buy_from_row_above, fmt_orders, order  # noqa: E402
 
 DRUM_PEXT, DRUM_AREAL_MASS, DRUM_END = 200.0, 1.0, 0.02  # Pa, kg/m² (ρt of the film), s
 
@@ -97,11 +97,8 @@ def coupled_section(cp):
           "what you buy (from the row above) |",
           "|---|---|---|---|---|---|---|---|"]
     for i, r in enumerate(cp["windows"]):
-        words = ""
-        if i > 0:
-            p = cp["windows"][i - 1]
-            words = buy(f"window {p['window'] * 1e3:g} → {r['window'] * 1e3:g} ms", p["error"], r["error"], p["wall"],
-                        r["wall"])
+        words = buy_from_row_above(cp["windows"], i,
+                                   lambda p, r: f"window {p['window'] * 1e3:g} → {r['window'] * 1e3:g} ms")
         md.append(f"| {r['window'] * 1e3:g} | {r['windows']} | {r['mean_iterations']:.2f} | {r['structural_steps']} | "
                   f"{r['centre'] * 1e3:.5f} | {r['error']:.2e} | {r['wall'] * 1e3:.1f} | {words} |")
     md.append(f"\nObserved order in the window: {fmt_orders(cp['window_orders'])} (first order expected: the fluid's "

@@ -7,7 +7,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import fsi_runs  # noqa: E402
-from cost_words import buy, fmt_orders, order, times  # noqa: E402
+from cost_words import buy, buy_from_row_above, fmt_orders, order, times  # noqa: E402
 
 TRANSIENT_CASE = "hencky"
 TRANSIENT_RINGS = 32
@@ -94,10 +94,7 @@ def integration_sections(saf, ms):
           "| `time.safety` | last Δt [µs] | steps | deflection [mm] | error | wall [s] | what you buy (from the row above) |",
           "|---|---|---|---|---|---|---|"]
     for i, r in enumerate(saf["rows"]):
-        words = ""
-        if i > 0:
-            p = saf["rows"][i - 1]
-            words = buy(f"safety {p['safety']:g} → {r['safety']:g}", p["error"], r["error"], p["wall"], r["wall"])
+        words = buy_from_row_above(saf["rows"], i, lambda p, r: f"safety {p['safety']:g} → {r['safety']:g}")
         md.append(f"| {r['safety']:g} | {r['dt'] * 1e6:.3f} | {r['steps']} | {r['value'] * 1e3:.4f} | "
                   f"{r['error']:.2e} | {r['wall']:.3f} | {words} |")
     md.append(f"\nObserved order in the safety factor: {fmt_orders(saf['orders'])} (expected 2).\n")
@@ -108,10 +105,7 @@ def integration_sections(saf, ms):
     md.append("| `time.safety` | steps | deflection [mm] | error | wall [s] | what you buy (from the row above) |")
     md.append("|---|---|---|---|---|---|")
     for i, r in enumerate(saf["static_rows"]):
-        words = ""
-        if i > 0:
-            p = saf["static_rows"][i - 1]
-            words = buy(f"safety {p['safety']:g} → {r['safety']:g}", p["error"], r["error"], p["wall"], r["wall"])
+        words = buy_from_row_above(saf["static_rows"], i, lambda p, r: f"safety {p['safety']:g} → {r['safety']:g}")
         md.append(f"| {r['safety']:g} | {r['steps']} | {r['value'] * 1e3:.5f} | {r['error']:.2e} | {r['wall']:.3f} "
                   f"| {words} |")
     md += ["", "## Time integration: selective mass scaling\n",

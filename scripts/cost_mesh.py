@@ -6,7 +6,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import fsi_runs  # noqa: E402
-from cost_words import buy, fmt_orders, order  # noqa: E402
+from cost_words import buy_from_row_above, fmt_orders, order  # noqa: E402
 from fsi_runs import MESH_STUDIES  # noqa: E402
 
 
@@ -74,11 +74,9 @@ def mesh_section(studies):
         md.append("|---|---|---|---|---|---|---|" + ("---|" if fine else ""))
         for i, r in enumerate(s["rows"]):
             key = "error_fine" if fine else "error"
-            words = ""
-            if i > 0:
-                p = s["rows"][i - 1]
-                words = buy(f"halving the mesh size ({p['level']} → {r['level']})", p[key], r[key], p["wall"],
-                            r["wall"], 0.0 if fine else s["floor"])
+            words = buy_from_row_above(s["rows"], i,
+                                       lambda p, r: f"halving the mesh size ({p['level']} → {r['level']})", key=key,
+                                       floor=0.0 if fine else s["floor"])
             err = f"{r['error']:.2e}" + (" (within the reference's precision)" if r["error"] <= s["floor"] else "")
             md.append(f"| {r['level']} | {r['elements']} | {r['value'] / u:.4f} | {err} | "
                       + (f"{r['error_fine']:.2e} | " if fine else "")

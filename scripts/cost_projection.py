@@ -11,7 +11,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import fsi_runs  # noqa: E402
-from cost_words import buy, fmt_orders, order  # noqa: E402
+from cost_words import buy, buy_from_row_above, fmt_orders, order  # noqa: E402
 
 ARC = math.radians(70.0)  # a cylinder patch, radius 1 m, length 1 m: curved like a canopy panel
 
@@ -114,11 +114,8 @@ def projection_section(pr):
            "| `--quadrature-level` | error (RMS) | max error | setup [ms] | what you buy (from the row above) |",
            "|---|---|---|---|---|"]
     for i, r in enumerate(q):
-        words = ""
-        if i > 0:
-            p = q[i - 1]
-            words = buy(f"level {p['level']} → {r['level']}", p["error"], r["error"], p["setup"], r["setup"],
-                        cost="the setup time")
+        words = buy_from_row_above(q, i, lambda p, r: f"level {p['level']} → {r['level']}", time="setup",
+                                   cost="the setup time")
         md.append(f"| {r['level']} | {r['error']:.2e} | {r['error_max']:.2e} | {r['setup'] * 1e3:.2f} | {words} |")
     md.append("\nThe error measured here is that of a smooth field carried from the fine source to the coarse "
               "target, where the 3-point rule per target triangle already integrates well. What the level is for "

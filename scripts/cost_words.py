@@ -27,6 +27,15 @@ def buy(change, e0, e1, t0, t1, floor=0.0, cost="the time"):
     return f"{change}: {err}, {times(t1 / t0)}× {cost}"
 
 
+def buy_from_row_above(rows, i, change, key="error", time="wall", **kw):
+    """The "what you buy" cell of table row i against row i - 1 ("" for the first row); change(p, r) names the
+    step from the row above p to this row r."""
+    if i == 0:
+        return ""
+    p, r = rows[i - 1], rows[i]
+    return buy(change(p, r), p[key], r[key], p[time], r[time], **kw)
+
+
 def order(h, e):
     """Observed convergence orders between successive levels: log(e_i/e_{i+1}) / log(h_i/h_{i+1})."""
     return [math.log(e[i] / e[i + 1]) / math.log(h[i] / h[i + 1]) if e[i] > 0 and e[i + 1] > 0 else float("nan")

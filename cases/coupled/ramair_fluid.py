@@ -454,9 +454,7 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
     loadRelaxation {s['load_relaxation']:.9g};
   }}
 """
-    def control_dict(libs, fsi, steps, end):
-        every = steps if s["write_interval"] == 0 or libs == "" and fsi == "" and s["coupled"] == "yes" \
-            else min(steps, s["write_interval"])
+    def control_dict(libs, fsi, steps, end, every):
         return f"""\
 application pimpleFoam;
 // deltaT = courant {s['courant']:g} * finest wing cell {d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {steps} steps
@@ -484,13 +482,14 @@ writeCompression off; timeFormat general; timePrecision 8; runTimeModifiable fal
 """
 
     write(os.path.join(sysd, "controlDict"), "dictionary", "controlDict", src,
-          control_dict(coupling_libs, coupling, s["steps"], d["endTime"]))
+          control_dict(coupling_libs, coupling, s["steps"], d["endTime"],
+                       min(s["steps"], s["write_interval"] or s["steps"])))
     if s["coupled"] == "yes" and s["rigid_steps"] > 0:
         # The rigid start (Allrun swaps these in, runs, copies the last fields to 0/ and swaps them back).
         nr = s["rigid_steps"]
         write(os.path.join(sysd, "controlDict.rigid"), "dictionary", "controlDict", src,
               "// The rigid wing's start-up run before the coupling (rigid_steps).\n"
-              + control_dict("", "", nr, nr * d["deltaT"]))
+              + control_dict("", "", nr, nr * d["deltaT"], nr))  # the rigid start writes its end only
         write(os.path.join(cons, "dynamicMeshDict.rigid"), "dictionary", "dynamicMeshDict", src,
               "// The rigid wing's start-up run: no mesh motion.\ndynamicFvMesh staticFvMesh;\n")
 

@@ -205,7 +205,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       if (o.has("subcycles")) structure_->setMinSubcycles(int(o.integer("subcycles")));
       if (equilibrium_)
         structure_->setStructureMode(fsi::coupling::StructureMode::Equilibrium,
-                                     int(o.integer("equilibriumSteps")));
+                                     fsi::coupling::equilibriumOptions(o));
       // The fluid's load arrives as nodal forces (structureLoads: the conservative transfer Hᵀ f).
       structure_->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
       // Projection structure -> each fluid patch, on the reference geometry.
@@ -288,7 +288,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
          << " interface nodes, ";
     if (equilibrium_)
       Info << "equilibrium mode: " << o.integer("equilibriumSteps")
-           << " damped pseudo-steps per window (kinetic damping)";
+           << " damped pseudo-steps per window (kinetic damping, each from " << o.text("equilibriumStart").c_str()
+           << ")";
     else
       Info << structure_->subcyclesFor(dt) << " structural steps per window of " << dt << " s";
     if (o.real("loadRelaxation") < 1) Info << ", load relaxation " << o.real("loadRelaxation");

@@ -210,16 +210,14 @@ void StructureParticipant::setMinSubcycles(int n) {
   makeSubcycling();
 }
 
-void StructureParticipant::setStructureMode(StructureMode mode, int equilibriumSteps) {
+void StructureParticipant::setStructureMode(StructureMode mode, EquilibriumOptions equilibrium) {
   if (mode == StructureMode::TimeAccurate) {
     equilibrium_.reset();
     relaxation_.reset();
     return;
   }
-  EquilibriumOptions o;
-  o.steps = equilibriumSteps;
   relaxation_ = std::make_unique<Relaxation>(*scene_, *cd_, *load_, *stepper_);
-  equilibrium_ = std::make_unique<EquilibriumStructure>(*relaxation_, o);  // checks the step count
+  equilibrium_ = std::make_unique<EquilibriumStructure>(*relaxation_, equilibrium);  // checks the step count
 }
 
 EquilibriumReport StructureParticipant::equilibriumReport() const {

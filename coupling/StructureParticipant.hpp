@@ -82,9 +82,9 @@ class StructureParticipant final : public StructureSolver {
   /// std::invalid_argument. Used to show that subcycling does not change a coupled answer beyond the
   /// time-discretisation error.
   void setMinSubcycles(int n);
-  /// Time-accurate (default) or equilibrium windows, the latter with `equilibriumSteps` damped pseudo-steps
-  /// per window (< 1 throws std::invalid_argument).
-  void setStructureMode(StructureMode mode, int equilibriumSteps = EquilibriumOptions{}.steps);
+  /// Time-accurate (default) or equilibrium windows, the latter with `equilibrium.steps` damped pseudo-steps
+  /// per window (< 1 throws std::invalid_argument), started from rest or carried over.
+  void setStructureMode(StructureMode mode, EquilibriumOptions equilibrium = {});
   StructureMode structureMode() const {
     return equilibrium_ ? StructureMode::Equilibrium : StructureMode::TimeAccurate;
   }

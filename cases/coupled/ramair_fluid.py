@@ -70,6 +70,9 @@ SETTINGS = {
                        "equilibrium: each fluid step relaxes the canopy towards its static state under the "
                        "step's load (Kalro-Tezduyar; steady states); timeAccurate: its real motion"),
     "equilibrium_steps": ("int", 100, 1, 1000000, "equilibrium: damped structural steps per fluid step"),
+    "equilibrium_start": (["rest", "carry"], "rest", None, None,
+                          "equilibrium: each step's relaxation from rest, or carrying the previous step's "
+                          "pseudo-motion (the slow swing on the lines converges in fewer steps)"),
     "load_relaxation": ("float", 1.0, 1e-3, 1.0,
                         "the canopy gets w f + (1 - w) f_previous of the flow's load f (1: off)"),
     "brake_right": ("float", 0.0, 0.0, 2.0,
@@ -437,7 +440,8 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
                          "libs (\"libfsiFoam.so\");\n")
         implicit = (f" tolerance {s['tolerance']:.9g}; maxIterations {s['max_iterations']};"
                     if s["scheme"] == "implicit" else "")
-        mode = (f"structureMode equilibrium; equilibriumSteps {s['equilibrium_steps']};"
+        mode = (f"structureMode equilibrium; equilibriumSteps {s['equilibrium_steps']}; "
+                f"equilibriumStart {s['equilibrium_start']};"
                 if s["structure_mode"] == "equilibrium" else
                 f"structureMode timeAccurate; subcycles {s['subcycles']};")
         coupling = f"""\

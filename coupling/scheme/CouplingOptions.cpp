@@ -452,6 +452,12 @@ OptionSchema couplingOptionSchema() {
                     std::nullopt, "damped structural pseudo-steps per fluid step towards equilibrium");
   equilibriumSteps.when = {kEquilibrium};
   coupled.push_back(equilibriumSteps);
+  OptionSpec equilibriumStart = wordSpec(
+      "equilibriumStart", OptionType::Choice, equilibriumStartNames()[0], equilibriumStartNames(),
+      "rest: every step's relaxation starts from rest; carry: with the pseudo-velocities of the "
+      "previous step (slow modes, e.g. a canopy swinging on its lines, converge in far fewer steps)");
+  equilibriumStart.when = {kEquilibrium};
+  coupled.push_back(equilibriumStart);
   coupled.push_back(realOption("loadRelaxation", "1", Bound{0, false}, Bound{1, true},
                                "the structure gets w f + (1 - w) f_previous of the fluid's load f; 1: off"));
   OptionSpec restore = wordSpec("restoreMeshPoints", OptionType::Switch, "yes", {},
@@ -488,6 +494,14 @@ std::unique_ptr<Acceleration> makeAcceleration(const OptionValues& values) {
 StructureMode structureMode(const OptionValues& values) {
   return values.text("structureMode") == toString(StructureMode::Equilibrium) ? StructureMode::Equilibrium
                                                                               : StructureMode::TimeAccurate;
+}
+
+EquilibriumOptions equilibriumOptions(const OptionValues& values) {
+  EquilibriumOptions o;
+  o.steps = int(values.integer("equilibriumSteps"));
+  o.start = values.text("equilibriumStart") == equilibriumStartNames()[1] ? EquilibriumStart::Carry
+                                                                          : EquilibriumStart::Rest;
+  return o;
 }
 
 CouplingConfig couplingConfig(const OptionValues& values, double timeWindowSize, double endTime) {

@@ -146,6 +146,8 @@ OptionSchema couplingOptionSchema();
 
 /// The structure's mode from validated options (`structureMode`).
 StructureMode structureMode(const OptionValues& values);
+/// equilibriumSteps and equilibriumStart of an equilibrium-mode option set (EquilibriumStructure).
+EquilibriumOptions equilibriumOptions(const OptionValues& values);
 
 /// The acceleration chosen by validated options (`acceleration` and its options).
 std::unique_ptr<Acceleration> makeAcceleration(const OptionValues& values);

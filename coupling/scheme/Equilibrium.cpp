@@ -10,6 +10,11 @@ const std::vector<std::string>& structureModeNames() {
   return names;
 }
 
+const std::vector<std::string>& equilibriumStartNames() {
+  static const std::vector<std::string> names{"rest", "carry"};
+  return names;
+}
+
 std::string toString(StructureMode mode) {
   return structureModeNames()[std::size_t(mode)];
 }
@@ -27,11 +32,15 @@ Eigen::VectorXd EquilibriumStructure::solve(double t, double dt, const Eigen::Ve
   // The newest load only: the window's start load is what the previous window relaxed under already.
   const Eigen::VectorXd start = stepper_.interfaceDisplacement();
   stepper_.freezeLoads(loadsEnd);
-  // Every window starts from rest: the load changed, and the previous window's pseudo-velocities are no
-  // motion of the structure.
-  stepper_.stopMotion();
+  const bool carry = opt_.start == EquilibriumStart::Carry;
+  // From rest, every window is a fresh relaxation under the new load. Carried over, the pseudo-velocities
+  // keep the direction the structure was relaxing in (the load changed by one fluid step only); a
+  // kinetic-energy peak still stops them.
+  if (!carry) stepper_.stopMotion();
+  // Carried, the kinetic energy the last window ended with is the one to compare the first step with (a peak
+  // may fall between two windows).
+  double previous = carry ? carriedKinetic_ : 0.0;
   last_ = {};
-  double previous = 0.0;
   for (int i = 0; i < opt_.steps; ++i) {
     const double ke = stepper_.relaxStep();
     if (ke < previous) {
@@ -46,8 +55,10 @@ Eigen::VectorXd EquilibriumStructure::solve(double t, double dt, const Eigen::Ve
     last_.lastKinetic = ke;
   }
   last_.steps = opt_.steps;
-  // The window ends at rest: what is left of the pseudo-motion is not the structure's velocity.
-  stepper_.stopMotion();
+  carriedKinetic_ = previous;
+  // What is left of the pseudo-motion is not the structure's velocity: from rest, the window ends at rest;
+  // carried, it is the next window's start.
+  if (!carry) stepper_.stopMotion();
   const Eigen::VectorXd end = stepper_.interfaceDisplacement();
   stepper_.endWindow(t + dt, (end - start) / dt);
   return end;

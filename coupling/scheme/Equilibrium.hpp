@@ -46,8 +46,18 @@ class RelaxationStepper : public CheckpointedSolver {
   virtual Eigen::VectorXd interfaceDisplacement() const = 0;
 };
 
+/// How a window's pseudo-motion starts: from rest (every window a fresh kinetic relaxation) or with the
+/// pseudo-velocities the previous window ended with. Restarting from rest advances a slow mode (a canopy
+/// swinging on its lines, period >> the N pseudo-steps) by only ~(N h)^2 a / 2 per window, however many
+/// windows follow; carrying the motion lets it build up across windows, while the kinetic damping still
+/// stops it at every kinetic-energy peak (docs/COUPLING.md, "Coupling to equilibrium").
+enum class EquilibriumStart { Rest, Carry };
+/// "rest", "carry": the option's words, in the enum's order.
+const std::vector<std::string>& equilibriumStartNames();
+
 struct EquilibriumOptions {
-  int steps = 100;  ///< damped pseudo-steps per window (>= 1)
+  int steps = 100;                                  ///< damped pseudo-steps per window (>= 1)
+  EquilibriumStart start = EquilibriumStart::Rest;  ///< the window's pseudo-motion from rest or carried over
 };
 
 /// What the last window's relaxation did (one row of coupling.csv in equilibrium mode).
@@ -65,8 +75,14 @@ class EquilibriumStructure final : public StructureSolver {
   explicit EquilibriumStructure(RelaxationStepper& stepper, EquilibriumOptions options = {});
   Eigen::VectorXd solve(double t, double dt, const Eigen::VectorXd& loadsStart,
                         const Eigen::VectorXd& loadsEnd) override;
-  void saveCheckpoint() override { stepper_.saveCheckpoint(); }
-  void restoreCheckpoint() override { stepper_.restoreCheckpoint(); }
+  void saveCheckpoint() override {
+    stepper_.saveCheckpoint();
+    savedKinetic_ = carriedKinetic_;
+  }
+  void restoreCheckpoint() override {
+    stepper_.restoreCheckpoint();
+    carriedKinetic_ = savedKinetic_;
+  }
   const EquilibriumOptions& options() const { return opt_; }
   const EquilibriumReport& lastReport() const { return last_; }
 
@@ -74,6 +90,8 @@ class EquilibriumStructure final : public StructureSolver {
   RelaxationStepper& stepper_;
   EquilibriumOptions opt_;
   EquilibriumReport last_;
+  double carriedKinetic_ = 0;  ///< carry: the kinetic energy the peak test compares the next step with
+  double savedKinetic_ = 0;    ///< carriedKinetic_ at the checkpoint (a repeated window starts from it)
 };
 
 }  // namespace fsi::coupling

@@ -47,7 +47,8 @@ class CentralDifference {
   const EnergyLedger& energy() const { return ledger_; }
   const Constraints& constraints() const { return constraints_; }
   /// Kinetic damping (equilibrium coupling, coupling/scheme/Equilibrium): every velocity v(n+½) to zero. The
-  /// kinetic energy removed is booked as dissipation (with the mass damping's), so the balance stays exact.
+  /// kinetic energy removed is booked as dissipation (with the mass damping's), so the balance stays exact;
+  /// the next step starts from rest like a run's first (half a step's kick).
   void stopMotion();
   /// Moves the clock to `t` without moving the structure: the pseudo-steps of an equilibrium coupling's
   /// relaxation are not physical time, and the window ends at the fluid's time.

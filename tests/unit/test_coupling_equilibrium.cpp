@@ -51,7 +51,10 @@ class String final : public StructureStepper, public RelaxationStepper {
     leapfrog(stableTimeStep(), frozen_);
     return 0.5 * kRho * h_ * v_.squaredNorm();
   }
-  void stopMotion() override { v_.setZero(); }
+  void stopMotion() override {
+    v_.setZero();
+    fresh_ = true;
+  }
   void endWindow(double, const VectorXd& velocity) override { windowVelocity = velocity; }
 
   // K x: the tension's restoring force.
@@ -65,14 +68,17 @@ class String final : public StructureStepper, public RelaxationStepper {
   static constexpr double kT = 1.0, kRho = 1.0;
 
  private:
+  // From rest (a start or a kinetic-damping stop) the first kick is half a step's, as CentralDifference's.
   void leapfrog(double dt, const VectorXd& f) {
-    const double m = kRho * h_;
-    v_ = ((1.0 - 0.5 * alpha_ * dt) * v_ + dt / m * (f - stiffness(x_))) / (1.0 + 0.5 * alpha_ * dt);
+    const double m = kRho * h_, kick = fresh_ ? 0.5 * dt : dt;
+    v_ = ((1.0 - 0.5 * alpha_ * kick) * v_ + kick / m * (f - stiffness(x_))) / (1.0 + 0.5 * alpha_ * kick);
     x_ += dt * v_;
+    fresh_ = false;
   }
   int n_;
   double h_, alpha_;
   VectorXd x_, v_, frozen_;
+  bool fresh_ = true;  // at rest: the next kick is half a step's
   std::pair<VectorXd, VectorXd> saved_;
 };
 
@@ -150,13 +156,14 @@ struct CushionSetup {
   double alpha = 0.0;  // the string's mass damping
   double mu = 0.0;     // added mass over the string's mass
   bool implicit = false;
+  EquilibriumOptions relaxation{};  // equilibrium mode: pseudo-steps per window, start from rest or carried
 };
 
 CushionRun runCushion(StructureMode mode, double kappa, double omega, int windows,
                       const CushionSetup& c = {}) {
   String string(kNodes, c.alpha);
   SubcycledStructure subcycled(string);
-  EquilibriumStructure relaxed(string);  // 100 pseudo-steps per window
+  EquilibriumStructure relaxed(string, c.relaxation);  // 100 pseudo-steps per window unless set
   StructureSolver& structure =
       mode == StructureMode::Equilibrium ? static_cast<StructureSolver&>(relaxed) : subcycled;
   Cushion cushion(kNodes, kP0, kappa, c.mu, kWindow);
@@ -230,6 +237,29 @@ TEST(CouplingEquilibrium, EquilibriumWindowsSettleInFarFewerWindowsThanTimeAccur
   EXPECT_LT(undamped.settled, 0);
   // The velocity handed over is the window's displacement change over its length.
   EXPECT_LT((eq.lastVelocity - eq.lastStep / kWindow).norm(), 1e-12 * (1.0 + eq.lastVelocity.norm()));
+}
+
+TEST(CouplingEquilibrium, CarriedPseudoMotionConvergesWhatTooFewStepsFromRestOnlyCreepTowards) {
+  // One pseudo-step per window spans 0.056 s of the string's pseudo-time, 1/36 of its fundamental period (2
+  // s): from rest, a window moves the fundamental by ~(omega h)^2 / 2 = 1.5 % of the way, and it creeps (as
+  // the canopy's swing on its lines does in the coupled ram-air run, docs/RAMAIR.md). Carried over, the
+  // motion builds up across windows, and the kinetic damping still stops it at every peak, a peak between
+  // two windows included. Both must reach the closed form; carried in half the windows at most (measured:
+  // 97 against 395).
+  const double h = 1.0 / (kNodes + 1), kappa = 6.0 / (1.0 - h * h);  // kappa c = 0.5, as above
+  CushionSetup rest, carry;
+  rest.relaxation = {1, EquilibriumStart::Rest};
+  carry.relaxation = {1, EquilibriumStart::Carry};
+  const CushionRun r = runCushion(StructureMode::Equilibrium, kappa, 1.0, 3000, rest);
+  const CushionRun c = runCushion(StructureMode::Equilibrium, kappa, 1.0, 3000, carry);
+  std::printf("1 pseudo-step per window: settled to %g after %d windows from rest, %d carried\n", kSettled,
+              r.settled, c.settled);
+  ASSERT_GT(r.settled, 0);
+  ASSERT_GT(c.settled, 0);
+  EXPECT_LE(2 * c.settled, r.settled);
+  EXPECT_LT(c.error.back(), kSettled);
+  // The window velocity stays the displacement change over the window, whatever the pseudo-velocities.
+  EXPECT_LT((c.lastVelocity - c.lastStep / kWindow).norm(), 1e-12 * (1.0 + c.lastVelocity.norm()));
 }
 
 TEST(CouplingEquilibrium, LoadRelaxationConvergesAStrongFeedbackThatDivergesWithout) {
@@ -401,8 +431,8 @@ TEST(CouplingEquilibriumFilm, ReachesStaticEquilibriumWhereTimeAccurateWindowsSt
 TEST(CouplingEquilibriumFilm, ModeAndStepsAreChecked) {
   StructureParticipant s(fsi::structure::loadSceneFromString(kDrum, "drum.yaml"));
   EXPECT_EQ(s.structureMode(), StructureMode::TimeAccurate);
-  EXPECT_THROW(s.setStructureMode(StructureMode::Equilibrium, 0), std::invalid_argument);
-  s.setStructureMode(StructureMode::Equilibrium, 7);
+  EXPECT_THROW(s.setStructureMode(StructureMode::Equilibrium, {0}), std::invalid_argument);
+  s.setStructureMode(StructureMode::Equilibrium, {7});
   EXPECT_EQ(s.structureMode(), StructureMode::Equilibrium);
   s.setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
   const long before = s.structuralSteps();

@@ -347,7 +347,7 @@ TEST(CouplingOptions, RangesAgreeWithTheLibraryChecks) {
   for (const int n : {-1, 0, 1, 100})
     EXPECT_EQ(
         accepted(minimal({{"structureMode", {"equilibrium"}}, {"equilibriumSteps", {std::to_string(n)}}})),
-        !throws([&] { drum.setStructureMode(StructureMode::Equilibrium, n); }))
+        !throws([&] { drum.setStructureMode(StructureMode::Equilibrium, {n}); }))
         << n;
   for (const char* w : {"-1", "0", "1e-9", "0.5", "1", "1.000001", "2"}) {
     CouplingConfig c;

@@ -817,7 +817,7 @@ def write_table(case, out):
         ("applied load (flow + ram pressure + line drag) [N]", v3(c["applied_load_N"]),
          f"balance {c['equilibrium_relative']:.1e}"),
         ("line drag [N]", v3(c["line_drag_N"]), ""),
-        ("anchor moments about the origin [N m]", v3(c["anchor_moment_Nm"]), ""),
+        ("supports' moments about the anchor (confluence point) [N m]", v3(c["anchor_moment_Nm"]), "x: roll, z: yaw"),
         ("interface force fluid vs structure (max over windows)", f"{c['force_fluid_vs_structure_max_relative']:.1e}",
          "conservative transfer: round-off"),
         ("interface moment fluid vs structure (max over windows)",

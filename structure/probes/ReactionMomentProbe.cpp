@@ -1,6 +1,7 @@
 // reaction_moment: a component of the moment about a point of the reaction forces (internal minus external
 // force) on a set of nodes, Σ (x_i − about) × r_i at the current positions — e.g. the moment the anchored
-// confluence point takes, whose change shows what a brake input does.
+// confluence point takes, whose change shows what a brake input does. `about` is a point [x, y, z] or a set
+// of one node (e.g. wing/confluence: the moments about the anchor), taken at its reference position.
 #include "structure/probes/ProbeKinds.hpp"
 
 namespace fsi::structure {
@@ -12,7 +13,18 @@ const std::vector<std::string> kKeys{"type", "nodes", "about", "component"};
 void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
   spec.reduce = ProbeReduce::Sum;
   spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
-  spec.center = p.vec3("about", {0, 0, 0});
+  const YAML::Node about = p.raw("about");
+  if (about && about.IsScalar()) {
+    // A node set: its one node's reference position (the anchor is held, so reference = current).
+    const std::vector<int> one = sets.nodes(about, p.childPath("about"));
+    if (one.size() != 1)
+      p.failAt("about", "'" + about.as<std::string>() + "' has " + std::to_string(one.size()) +
+                            " nodes; the moment's point is one node or [x, y, z]");
+    const Nodes& N = sets.model().nodes;
+    for (int k = 0; k < 3; ++k) spec.center[k] = N.X[3 * one[0] + k];
+  } else {
+    spec.center = p.vec3("about", {0, 0, 0});
+  }
   spec.component = readComponent(p, {"x", "y", "z", "magnitude"});
   p.finish(kKeys);
 }

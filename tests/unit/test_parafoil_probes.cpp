@@ -26,6 +26,8 @@ probes:
   t_sum: {type: line_tension, lines: l/all, reduce: sum}
   m_y: {type: reaction_moment, nodes: l/end, about: [0, 0, 0], component: y}
   m_y_shifted: {type: reaction_moment, nodes: l/end, about: [1, 0, 0], component: y}
+  m_y_about_start: {type: reaction_moment, nodes: l/end, about: l/start, component: y}
+  m_y_about_end: {type: reaction_moment, nodes: l/end, about: l/end, component: y}
   load_z: {type: applied_load, nodes: l, component: z}
   reaction_z: {type: reaction, nodes: l, component: z}
   balance: {type: equilibrium_error, supports: l/end}
@@ -53,12 +55,30 @@ TEST(ParafoilProbes, ReactionMomentIsRCrossTheReaction) {
   const auto p = evaluateProbes(scene);
   EXPECT_NEAR(p.at("m_y"), 10.0, 1e-12);
   EXPECT_NEAR(p.at("m_y_shifted"), 0.0, 1e-12);
+  // About a one-node set: its reference position (the start sits at the origin, the end at (1, 0, 0)).
+  EXPECT_NEAR(p.at("m_y_about_start"), 10.0, 1e-12);
+  EXPECT_NEAR(p.at("m_y_about_end"), 0.0, 1e-12);
   // Global equilibrium at rest: the reactions and the applied load cancel.
   EXPECT_NEAR(p.at("load_z"), 10.0, 1e-12);
   EXPECT_NEAR(p.at("reaction_z") + p.at("load_z"), 0.0, 1e-12);
   EXPECT_NEAR(p.at("balance"), 0.0, 1e-14);
   // The free end carries no reaction: the whole load is out of balance.
   EXPECT_NEAR(p.at("unbalanced"), 1.0, 1e-14);
+}
+
+TEST(ParafoilProbes, MomentAboutASetOfMoreThanOneNodeIsALocatedError) {
+  std::string yaml = kChain;
+  const std::string from = "about: [0, 0, 0], component: y}";
+  yaml.replace(yaml.find(from), from.size(), "about: l/all, component: y}");
+  try {
+    loadSceneFromString(yaml, "chain.yaml");
+    FAIL() << "accepted a moment about 5 nodes";
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("chain.yaml"), std::string::npos) << what;
+    EXPECT_NE(what.find("about"), std::string::npos) << what;
+    EXPECT_NE(what.find("5 nodes"), std::string::npos) << what;
+  }
 }
 
 TEST(ParafoilProbes, PitchAngleOfATurnedChord) {

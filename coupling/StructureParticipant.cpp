@@ -227,9 +227,11 @@ EquilibriumReport StructureParticipant::equilibriumReport() const {
 double StructureParticipant::staticResidualRatio() {
   cd_->evaluateForces(false);
   const structure::Nodes& N = scene_->model->nodes;
+  // f_int − f_ext with the tie forces of tie groups left out (a tied node's share of its group's).
+  cd_->constraints().reactions(N, residual_);
   double res = 0, reaction = 0, applied = 0;
   for (std::size_t d = 0; d < N.x.size(); ++d) {
-    const double R = N.fext[d] - N.fint[d];
+    const double R = -residual_[d];
     applied = std::max(applied, std::abs(N.fext[d]));
     // A constrained dof has no inverse mass (as for the dynamic relaxation's free-dof mask).
     if (N.invMassDof[d] != 0.0)

@@ -174,6 +174,7 @@ class StructureParticipant final : public StructureSolver {
   // Histories for /tables/energy and /tables/probes of the results file, column by column.
   std::vector<std::string> probeNames_;
   std::vector<std::vector<double>> energyRows_, probeRows_;
+  std::vector<double> residual_;  ///< staticResidualRatio's scratch (node reactions)
 };
 
 }  // namespace fsi::coupling

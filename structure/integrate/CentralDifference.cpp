@@ -40,6 +40,11 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
   pm.assign(unique.rbegin(), unique.rend());
   prescribedOld_.resize(2 * pm.size());
   sliderOld_.resize(3 * constraints_.sliders.size());
+  const TieGroups& ties = constraints_.ties;
+  tieOld_.resize(6 * ties.nodes.size());
+  tieMass_.assign(std::size_t(ties.groups()), 0.0);
+  for (int g = 0; g < ties.groups(); ++g)
+    for (int j = ties.start[g]; j < ties.start[g + 1]; ++j) tieMass_[g] += model_.nodes.mass[ties.nodes[j]];
   constraints_.applyTo(model_.nodes);
   ledger_ = ledgerFrom(halfVelocityEnergy(model_.nodes));
   recordInitialStrain();
@@ -111,6 +116,12 @@ bool CentralDifference::step(double limitTime, bool monitor) {
   }
   for (std::size_t j = 0; j < constraints_.sliders.size(); ++j)
     for (int k = 0; k < 3; ++k) sliderOld_[3 * j + k] = v[3 * constraints_.sliders[j].node + k];
+  const TieGroups& ties = constraints_.ties;
+  for (std::size_t j = 0; j < ties.nodes.size(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      tieOld_[6 * j + k] = v[3 * ties.nodes[j] + k];
+      tieOld_[6 * j + 3 + k] = x[3 * ties.nodes[j] + k];
+    }
 
   // One sweep: update, physical KE of the mid-step velocity, Σ m v(n−½)·v(n+½), Σ m v(n+½)², and the
   // forces' power at both half-step velocities (the two halves of this evaluation's work).
@@ -185,6 +196,42 @@ bool CentralDifference::step(double limitTime, bool monitor) {
       const double rDelta = mi * (1.0 + 0.5 * a * dtAvg) * (vNew - vCur[k]);
       reactOld += 0.5 * rDelta * vOld;
       reactNew += 0.5 * rDelta * vNew;
+    }
+  }
+
+  // Tie groups: the group's tied velocity from its summed mass and force (the M-weighted mean of its
+  // members' free updates, computed from the sums so that every member gets the same number); the sweep's
+  // values are replaced as for the constraints above, and the tie force R defined the same way is booked
+  // with the reactions: its work on tied motions is zero (Σ R = 0 across d, R ⟂ d), so what is booked is
+  // round-off, and the balance stays an identity.
+  for (int g = 0; g < ties.groups(); ++g) {
+    double mv[3] = {0, 0, 0}, f[3] = {0, 0, 0};
+    for (int j = ties.start[g]; j < ties.start[g + 1]; ++j) {
+      const int i = ties.nodes[j];
+      for (int k = 0; k < 3; ++k) {
+        mv[k] += m[i] * tieOld_[6 * j + k];
+        f[k] += fe[3 * i + k] - fi[3 * i + k];
+      }
+    }
+    double sum[3], V[3];
+    for (int k = 0; k < 3; ++k) sum[k] = (c1 * mv[k] + dtAvg * f[k]) * c2 / tieMass_[g];
+    ties.tiedPart(g, sum, V);
+    for (int j = ties.start[g]; j < ties.start[g + 1]; ++j) {
+      const int i = ties.nodes[j];
+      const double mi = m[i];
+      double vCur[3], t[3];
+      for (int k = 0; k < 3; ++k) vCur[k] = v[3 * i + k];
+      ties.tiedPart(g, vCur, t);
+      for (int k = 0; k < 3; ++k) {
+        const int d = 3 * i + k;
+        const double vOld = tieOld_[6 * j + k], vNew = (vCur[k] - t[k]) + V[k];
+        v[d] = vNew;
+        x[d] = tieOld_[6 * j + 3 + k] + dtNext * vNew;
+        replace(d, mi, vOld, vCur[k], vNew);
+        const double rDelta = mi * (1.0 + 0.5 * a * dtAvg) * (vNew - vCur[k]);
+        reactOld += 0.5 * rDelta * vOld;
+        reactNew += 0.5 * rDelta * vNew;
+      }
     }
   }
 

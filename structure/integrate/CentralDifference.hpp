@@ -7,6 +7,9 @@
 // recomputed every step by the element effects from the current geometry, unless a fixed step is given.
 // Energies are gathered in the same sweep as the update (no extra pass over the nodes); the bookkeeping is
 // exact at every step (EnergyLedger), support reactions of prescribed motions and sliding planes included.
+// A tie group (Constraints::ties) advances its tied part with its summed mass and force,
+//   V(n+½) = [(1 − αΔ/2) Σm t(v(n−½)) + Δ Σ t(f_ext − f_int)] / ((1 + αΔ/2) Σm),
+// one velocity for all its nodes; the part along the extrusion stays each node's own.
 
 #include <memory>
 #include <vector>
@@ -91,8 +94,9 @@ class CentralDifference {
   double stableDt_ = 0;
   long steps_ = 0;
   // Velocities v(n−½) of the constrained dofs, saved before the sweep overwrites them (the support
-  // reactions' work needs them). Sized once.
-  std::vector<double> prescribedOld_, sliderOld_;
+  // reactions' work needs them), and for tied nodes also x(n). Sized once.
+  std::vector<double> prescribedOld_, sliderOld_, tieOld_;
+  std::vector<double> tieMass_;  ///< summed mass of each tie group
 };
 
 }  // namespace fsi::structure

@@ -70,11 +70,14 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
       while (true) {
         // Static residual on free dofs, reactions on constrained ones. std::max drops a NaN, so a separate
         // sum carries any non-finite residual to the divergence test.
+        // A tied node's residual is its share of its group's (the tie forces are no residual).
+        const bool tied = !constraints_.ties.empty();
+        if (tied) sharedResidual();
         double res = 0, reac = 0, fmax = 0, ke = 0, all = 0;
         for (int i = 0; i < N.count; ++i)
           for (int k = 0; k < 3; ++k) {
             const int d = 3 * i + k;
-            const double R = N.fext[d] - N.fint[d];
+            const double R = tied ? resid_[d] : N.fext[d] - N.fint[d];
             all += R;
             fmax = std::max(fmax, std::abs(N.fext[d]));
             if (free_[d] != 0.0) {
@@ -129,9 +132,18 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
         const double h = fresh ? 0.5 : 1.0;
         if (kinetic) {
           double keNew = 0;
-          for (int d = 0; d < nd; ++d) {
-            const double vn = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
-            keNew += 0.5 * mass_[d / 3] * vn * vn;
+          if (tied) {
+            // The kinetic energy of the tied motion the update is about to give.
+            vTrial_.resize(std::size_t(nd));
+            for (int d = 0; d < nd; ++d)
+              vTrial_[d] = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
+            constraints_.ties.project(mass_.data(), vTrial_.data(), nullptr, 0.0);
+            for (int d = 0; d < nd; ++d) keNew += 0.5 * mass_[d / 3] * vTrial_[d] * vTrial_[d];
+          } else {
+            for (int d = 0; d < nd; ++d) {
+              const double vn = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
+              keNew += 0.5 * mass_[d / 3] * vn * vn;
+            }
           }
           if (!fresh && keNew < kePrev) {
             // Kinetic-energy peak passed: zero the velocities (after stepping back to the peak).
@@ -160,6 +172,9 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
         }
         for (const PlaneSlider& sl : constraints_.sliders)
           sl.project(&N.v[3 * sl.node], &N.x[3 * sl.node], 1.0);
+        // A tie group moves with its summed (fictitious) mass and residual: the mass-weighted mean of its
+        // members' updates.
+        if (tied) constraints_.ties.project(mass_.data(), N.v.data(), N.x.data(), 1.0);
         fresh = false;
         forces(lf);
 
@@ -228,8 +243,17 @@ void DynamicRelaxation::keepIfBest(long iteration, int increment, double loadFac
   best_.scalars["increment"] = increment;
 }
 
-void DynamicRelaxation::locateResidual(RelaxationResult& r) const {
+void DynamicRelaxation::sharedResidual() {
   const Nodes& N = model_.nodes;
+  resid_.resize(N.fext.size());
+  for (std::size_t d = 0; d < resid_.size(); ++d) resid_[d] = N.fext[d] - N.fint[d];
+  constraints_.ties.shareByMass(mass_.data(), resid_.data());
+}
+
+void DynamicRelaxation::locateResidual(RelaxationResult& r) {
+  const Nodes& N = model_.nodes;
+  const bool tied = !constraints_.ties.empty();
+  if (tied) sharedResidual();
   r.worstNode = -1;
   r.nonFiniteNodes = 0;
   r.firstNonFiniteNode = -1;
@@ -238,7 +262,7 @@ void DynamicRelaxation::locateResidual(RelaxationResult& r) const {
     double r2 = 0;
     for (int k = 0; k < 3; ++k) {
       const int d = 3 * i + k;
-      const double R = (N.fext[d] - N.fint[d]) * free_[d];
+      const double R = (tied ? resid_[d] : N.fext[d] - N.fint[d]) * free_[d];
       r2 += R * R;
     }
     if (!std::isfinite(r2) || !std::isfinite(N.x[3 * i] + N.x[3 * i + 1] + N.x[3 * i + 2])) {

@@ -8,6 +8,9 @@
 //     of the lowest frequency, ω0² = Σ u_i² K̄_ii / Σ u_i² m_i, K̄_ii = −ΔR_i/Δx_i (Underwood: c = 2ω0;
 //     Rezaiee-Pajand: c = sqrt(4ω0² − ω0⁴)).
 // Converged when max(‖R‖∞ / ‖reactions‖∞, E_kin / E_strain) ≤ ε (R: static residual on free dofs).
+// Tie groups (Constraints::ties) move with their summed fictitious mass and residual, and a tied node's
+// residual is its share of its group's (TieGroups::shareByMass), so the tie forces count neither as
+// residual nor as reactions.
 // Safeguards: Underwood's apparent-frequency test |ΔR_i| / (4 m_i |Δx_i|) > 1, failed on three iterations in
 // a row, flags a node whose mass is too small for Δt = 1 and raises it by that factor; a divergence (residual
 // up 10⁴-fold or non-finite) restarts the increment with 1.5x the masses. Both are counted in the result.
@@ -90,13 +93,16 @@ class DynamicRelaxation {
   void forces(double loadFactor);
   void keepIfBest(long iteration, int increment, double loadFactor, double residualRatio);
   /// Largest-residual node and non-finite residuals at the current state (for a stopped run's report).
-  void locateResidual(RelaxationResult& r) const;
+  void locateResidual(RelaxationResult& r);
+  /// resid_ = f_ext − f_int with the tie forces left out (TieGroups::shareByMass, fictitious masses).
+  void sharedResidual();
   Model& model_;
   std::vector<const Effect*> effects_;
   Constraints constraints_;
   RelaxationSettings s_;
-  std::vector<double> mass_;  ///< fictitious mass per node
-  std::vector<double> free_;  ///< 1 for a free dof, 0 for a constrained one
+  std::vector<double> mass_;            ///< fictitious mass per node
+  std::vector<double> free_;            ///< 1 for a free dof, 0 for a constrained one
+  std::vector<double> resid_, vTrial_;  ///< tie groups only: shared residual, trial velocities
   double strain_ = 0;
   StateSnapshot best_;
 };

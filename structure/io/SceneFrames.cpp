@@ -30,9 +30,10 @@ void SceneFrames::write(double time, long step) {
   if (f.count("displacement")) views.push_back({"displacement", FieldView::Center::Node, 3, u_.data()});
   if (f.count("velocity")) views.push_back({"velocity", FieldView::Center::Node, 3, N.v.data()});
   if (f.count("residual")) {
-    // Out-of-balance force f_ext − f_int on free dofs (forces as last evaluated by the solver).
-    r_.resize(3 * N.count);
-    for (int i = 0; i < 3 * N.count; ++i) r_[i] = N.invMassDof[i] != 0.0 ? N.fext[i] - N.fint[i] : 0.0;
+    // Out-of-balance force f_ext − f_int on free dofs (forces as last evaluated by the solver; on a tied node
+    // its share of its group's, Constraints::reactions).
+    scene_.constraints.reactions(N, r_);
+    for (int i = 0; i < 3 * N.count; ++i) r_[i] = N.invMassDof[i] != 0.0 ? -r_[i] : 0.0;
     views.push_back({"residual", FieldView::Center::Node, 3, r_.data()});
   }
   // Element fields: every element kind adds the ones it has (stress of the membranes, cable forces, ...).

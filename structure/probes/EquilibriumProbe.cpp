@@ -24,8 +24,9 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
   for (int n = 0; n < N.count; ++n)
     for (int k = 0; k < 3; ++k) load[k] += N.fext[3 * n + k];
   for (int k = 0; k < 3; ++k) sum[k] = load[k];
+  const std::vector<double>& reaction = state.reactions();  // tie forces left out
   for (int n : p.nodes)
-    for (int k = 0; k < 3; ++k) sum[k] += N.fint[3 * n + k] - N.fext[3 * n + k];
+    for (int k = 0; k < 3; ++k) sum[k] += reaction[3 * n + k];
   const double L = std::sqrt(load[0] * load[0] + load[1] * load[1] + load[2] * load[2]);
   const double S = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
   vals.push_back(L > 0 ? S / L : S);

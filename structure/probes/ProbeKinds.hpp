@@ -16,18 +16,23 @@
 
 namespace fsi::structure {
 
-/// What a probe's evaluate function may read: the scene's current state, and the membrane stresses
-/// (computed once per evaluation, on first use).
+/// What a probe's evaluate function may read: the scene's current state, the membrane stresses and the
+/// nodes' reactions (each computed once per evaluation, on first use).
 class ProbeState {
  public:
   explicit ProbeState(const Scene& scene) : scene_(scene) {}
   const Scene& scene() const { return scene_; }
   const MembraneStressField& membraneStress();
+  /// The reaction f_int − f_ext of every node (3 per node), tie forces left out (Constraints::reactions):
+  /// what the supports exert, plus −m·a on moving nodes. Computed once per evaluation, on first use.
+  const std::vector<double>& reactions();
 
  private:
   const Scene& scene_;
   MembraneStressField stress_;
   bool haveStress_ = false;
+  std::vector<double> reactions_;
+  bool haveReactions_ = false;
 };
 
 struct ProbeKind {

@@ -34,6 +34,12 @@ const MembraneStressField& ProbeState::membraneStress() {
   return stress_;
 }
 
+const std::vector<double>& ProbeState::reactions() {
+  if (!haveReactions_) scene_.constraints.reactions(scene_.model->nodes, reactions_);
+  haveReactions_ = true;
+  return reactions_;
+}
+
 ProbeComponent readComponent(const YamlMap& entry, const std::vector<std::string>& allowed) {
   static const std::vector<std::pair<std::string, ProbeComponent>> names{
       {"x", ProbeComponent::X},

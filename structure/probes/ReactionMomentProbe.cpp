@@ -31,12 +31,13 @@ void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
 
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
   const Nodes& N = state.scene().model->nodes;
+  const std::vector<double>& reaction = state.reactions();  // tie forces left out
   double m[3] = {0, 0, 0};
   for (int n : p.nodes) {
     double d[3], r[3];
     for (int k = 0; k < 3; ++k) {
       d[k] = N.x[3 * n + k] - p.center[k];
-      r[k] = N.fint[3 * n + k] - N.fext[3 * n + k];
+      r[k] = reaction[3 * n + k];
     }
     m[0] += d[1] * r[2] - d[2] * r[1];
     m[1] += d[2] * r[0] - d[0] * r[2];

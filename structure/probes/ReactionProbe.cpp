@@ -17,13 +17,15 @@ void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
   p.finish(kKeys);
 }
 
-// Σ over the nodes of f_int − f_ext (the reaction) or of f_ext (the applied load), as the probe's component.
+// Σ over the nodes of f_int − f_ext (the reaction; tie forces left out, ProbeState::reactions) or of f_ext
+// (the applied load), as the probe's component.
 template <bool Reaction>
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
   const Nodes& N = state.scene().model->nodes;
+  const double* reaction = Reaction ? state.reactions().data() : nullptr;
   double r[3] = {0, 0, 0};
   for (int n : p.nodes)
-    for (int k = 0; k < 3; ++k) r[k] += Reaction ? N.fint[3 * n + k] - N.fext[3 * n + k] : N.fext[3 * n + k];
+    for (int k = 0; k < 3; ++k) r[k] += Reaction ? reaction[3 * n + k] : N.fext[3 * n + k];
   vals.push_back(vectorComponent(r, p.component));
 }
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "structure/scene/ExtrudeTies.hpp"
 #include "structure/scene/ReadTimeFunction.hpp"
 
 namespace fsi::structure {
@@ -13,6 +14,13 @@ namespace fsi::structure {
 Constraints buildConstraints(const YamlMap& top, const Model& model, const SetResolver& sets) {
   Constraints constraints;
   const std::string& fileName = top.file();
+  // Who constrained what, for the checks of the tie groups (formed after the whole list is read, so that
+  // the order of the entries does not matter).
+  const int nodeCount = model.nodes.count;
+  ConstraintOrigins origins{std::vector<int>(3 * std::size_t(nodeCount), -1),
+                            std::vector<int>(std::size_t(nodeCount), -1),
+                            std::vector<int>(std::size_t(nodeCount), -1)};
+  std::vector<ExtrudeRequest> extrusions;
   if (top.has("constraints")) {
     const YAML::Node list = top.raw("constraints");
     if (!list.IsSequence()) top.failAt("constraints", "expected a list");
@@ -26,7 +34,10 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
             c.failAt("fix", fmt::format("'{}' is not a component; valid: x, y, z, all", comp));
           for (int n : nodes)
             for (int k = 0; k < 3; ++k)
-              if (comp == "all" || comp == valid[k]) constraints.fixedDofs.push_back(3 * n + k);
+              if (comp == "all" || comp == valid[k]) {
+                constraints.fixedDofs.push_back(3 * n + k);
+                origins.fixedBy[3 * n + k] = int(i);
+              }
         }
         c.finish({"nodes", "fix"});
       } else if (c.has("symmetry")) {
@@ -48,10 +59,13 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
           for (int k = 0; k < 3; ++k) d += (N.X[3 * j + k] - pt[k]) * n[k];
           if (std::abs(d) > tol) continue;
           ++count;
-          if (axis >= 0)
+          if (axis >= 0) {
             constraints.fixedDofs.push_back(3 * j + axis);
-          else
+            origins.fixedBy[3 * j + axis] = int(i);
+          } else {
             constraints.sliders.push_back({j, n});
+            origins.sliderBy[j] = int(i);
+          }
         }
         if (count == 0) c.failAt("symmetry", "no node lies on this plane (check point, normal, tolerance)");
         c.finish({"symmetry"});
@@ -78,14 +92,21 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
         p.finish({"component", "direction", "amplitude", "function"});  // a misspelt key first
         if (!byDirection && !byComponent)
           p.fail("give either 'component: x|y|z' or 'direction: [dx, dy, dz]'");
-        for (int n : nodes)
+        for (int n : nodes) {
+          origins.prescribedBy[n] = int(i);
           for (int k = 0; k < 3; ++k)
             if (byDirection || along[k] != 0) constraints.prescribed.push_back({n, k, amp * along[k], fn});
+        }
         c.finish({"nodes", "prescribe"});
+      } else if (c.has("extrude")) {
+        extrusions.push_back(readExtrude(c, int(i), sets.nodes(c.required("nodes"), c.childPath("nodes"))));
       } else {
-        c.fail("a constraint needs one of: fix (with nodes), symmetry, prescribe (with nodes)");
+        c.fail(
+            "a constraint needs one of: fix (with nodes), symmetry, prescribe (with nodes), extrude (with "
+            "nodes)");
       }
     }
+    addExtrudeTies(extrusions, model, origins, constraints);
     auto& f = constraints.fixedDofs;
     std::sort(f.begin(), f.end());
     f.erase(std::unique(f.begin(), f.end()), f.end());

@@ -1,5 +1,5 @@
 #pragma once
-// The scene's `constraints:` list (fix, symmetry, prescribe) resolved against the model.
+// The scene's `constraints:` list (fix, symmetry, prescribe, extrude) resolved against the model.
 
 #include "structure/integrate/Constraints.hpp"
 #include "structure/model/Model.hpp"

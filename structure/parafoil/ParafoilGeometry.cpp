@@ -378,6 +378,13 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
     }
   }
   m.lineGroups["brakes"];
+  // Trailing-edge tape: one cable per skin edge along the trailing edge (the skin's own nodes, no new ones);
+  // the set `tapes` exists only with it.
+  if (q.trailingEdgeTape)
+    for (int j = 0; j < q.cells * q.spanDivisions; ++j) {
+      m.lineGroups["tapes"].push_back(int(m.lines.size()));
+      m.lines.push_back({node(j, n - 1), node(j + 1, n - 1)});
+    }
   m.lineGroups["main_lines"];
   m.lineGroups["riser"];
   if (q.riserLength > 0) {

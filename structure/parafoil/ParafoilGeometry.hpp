@@ -68,6 +68,9 @@ struct ParafoilParams {
   // Brakes.
   int brakePoints = 3;           ///< trailing-edge points per side (at the outermost ribs); 0 = no brakes
   double toggleFraction = 0.15;  ///< toggle along confluence -> mean brake point
+  /// A reinforcement tape (cables, the mesh's cable material) along the trailing edge from tip to tip: a
+  /// brake line then pulls the edge down over the span instead of denting the skin at its attachment point.
+  bool trailingEdgeTape = false;
   // Payload.
   double riserLength = 0.0;  ///< > 0: payload point this far below the confluence point, on a riser
 };

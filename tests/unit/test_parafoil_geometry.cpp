@@ -217,6 +217,35 @@ TEST(ParafoilGeometry, LinesAndAttachmentsAsSpecified) {
   EXPECT_NEAR(chainLength, 0.5, 1e-12);
 }
 
+TEST(ParafoilGeometry, TrailingEdgeTapeJoinsTheTrailingEdgeFromTipToTip) {
+  ParafoilParams q = untwisted(24, 2);
+  EXPECT_EQ(buildParafoil(q).lineGroups.count("tapes"), 0u);  // off unless asked for
+  q.trailingEdgeTape = true;
+  const MeshData m = buildParafoil(q);
+  const auto& tapes = m.lineGroups.at("tapes");
+  const auto& te = m.nodeGroups.at("trailing_edge");  // one node per spanwise station, tip to tip
+  ASSERT_EQ(tapes.size(), te.size() - 1);
+  ASSERT_EQ(te.size(), std::size_t(q.cells * q.spanDivisions + 1));
+  // Cable k joins stations k and k + 1: the skin's own trailing-edge nodes, no new points, and its length is
+  // the chord of the arc between them (untwisted, untapered: the edge lies on a circle of the arc's radius
+  // about the arc's centre, so the stations are equally spaced along it).
+  double total = 0;
+  for (std::size_t k = 0; k < tapes.size(); ++k) {
+    const auto& line = m.lines[tapes[k]];
+    EXPECT_EQ(std::min(line[0], line[1]), std::min(te[k], te[k + 1])) << k;
+    EXPECT_EQ(std::max(line[0], line[1]), std::max(te[k], te[k + 1])) << k;
+    const auto& a = m.points[line[0]];
+    const auto& b = m.points[line[1]];
+    total += std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+  }
+  const auto& first = m.points[te.front()];
+  const auto& last = m.points[te.back()];
+  EXPECT_NEAR(first[1], -last[1], 1e-12);  // mirror symmetric ends
+  EXPECT_GT(total, std::hypot(first[0] - last[0], first[1] - last[1], first[2] - last[2]));  // a curve
+  EXPECT_LT(total, q.span * (1 + 1e-12));  // the polygon inscribed in the span's arc
+  EXPECT_EQ(m.points.size(), buildParafoil(untwisted(24, 2)).points.size());
+}
+
 TEST(ParafoilGeometry, BulgedCellsAreCircularArcsBetweenTheRibs) {
   // Flat and bulged designs differ only between the ribs: the rib nodes stay, and at the thickest chord
   // station the skin node at mid-cell stands out by bulge·w (w = b / cells), the others on the circular arc

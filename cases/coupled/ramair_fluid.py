@@ -40,6 +40,10 @@ RESOLUTIONS = {
     "medium": {"surface": (5, 6), "features": 6, "near": 4, "wake": 3},
 }
 
+# motion_diffusivity: the displacementLaplacian's diffusivity (OpenFOAM's names)
+DIFFUSIVITY = {"quadratic": "quadratic inverseDistance (wing)", "inverse": "inverseDistance (wing)",
+               "uniform": "uniform"}
+
 # key: (kind, default, lower, upper, help); kind "float" (finite, lower <= v <= upper), "int", or a word list
 SETTINGS = {
     "speed": ("float", None, 1e-3, 1e3, "free-stream speed [m/s]"),
@@ -61,6 +65,9 @@ SETTINGS = {
     "mesh_motion": (["auto", "none", "laplacian"], "auto", None, None,
                     "none: static mesh (rigid wing); laplacian: displacementLaplacian, inverse-distance "
                     "diffusivity; auto: laplacian when coupled, else none"),
+    "motion_diffusivity": (list(DIFFUSIVITY), "quadratic", None, None,
+                           "laplacian: quadratic (1/r^2 from the wing: the cells next to it move with it), "
+                           "inverse (1/r) or uniform"),
     "coupled": (["no", "yes"], "no", None, None,
                 "yes: the wing is structure.yaml's canopy, coupled to the flow through libfsiFoam (its scene "
                 "for the run: structure-coupled.yaml, written from structure.yaml and these settings)"),
@@ -79,6 +86,9 @@ SETTINGS = {
                     "coupled yes: the right toggle pulled down by this much [m] (0: held like the left one)"),
     "brake_start": ("float", 0.0, 0.0, 1e6, "coupled yes: when the pull starts [s]"),
     "brake_duration": ("float", 0.1, 1e-6, 1e6, "coupled yes: the pull's smooth ramp [s]"),
+    "trailing_edge_tape": (["no", "yes"], "no", None, None,
+                           "coupled yes: a tape (cables) along the canopy's trailing edge, so that a brake line "
+                           "draws the edge down over the span instead of denting the skin (docs/PARAFOIL.md)"),
     "tolerance": ("float", 1e-3, 1e-12, 0.5, "implicit: relative interface-displacement residual of a step"),
     "max_iterations": ("int", 20, 1, 1000, "implicit: iterations per step at most"),
     "subcycles": ("int", 1, 1, 100000, "structural steps per fluid step at least"),
@@ -155,6 +165,11 @@ def read_settings(path):
         if values["stl_bulge"] >= 0:
             raise InputError(f"{path}:{where['stl_bulge']}: stl_bulge with coupled yes: the fluid's skin must be "
                              "the structure's own surface (remove stl_bulge)")
+    else:
+        # The structure's keys mean nothing to a rigid wing: say so rather than run without them.
+        for key in ("brake_right", "trailing_edge_tape", "equilibrium_start"):
+            if key in where and values[key] != SETTINGS[key][1]:
+                raise InputError(f"{path}:{where[key]}: {key} needs coupled yes (the rigid wing has no structure)")
     return values
 
 
@@ -393,7 +408,7 @@ mergeTolerance 1e-6;
         motion = ("dynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolverLibs (\"libfvMotionSolvers.so\");\n"
                   "motionSolver displacementLaplacian;\n"
                   "// Diffusivity falling with the distance from the wing keeps the cells next to it rigid.\n"
-                  "displacementLaplacianCoeffs { diffusivity quadratic inverseDistance (wing); }\n")
+                  f"displacementLaplacianCoeffs {{ diffusivity {DIFFUSIVITY[s['motion_diffusivity']]}; }}\n")
     else:
         motion = "// Rigid wing: no mesh motion (mesh_motion laplacian in the settings moves it).\ndynamicFvMesh staticFvMesh;\n"
     write(os.path.join(cons, "dynamicMeshDict"), "dictionary", "dynamicMeshDict", src, motion)
@@ -600,6 +615,12 @@ def write_structure(settings_path, scene_path, out_path):
     if isinstance(eff.get("line_drag"), dict):
         eff["line_drag"]["wind"] = [float(f"{s['speed'] * v:.9g}") for v in (math.cos(a), 0.0, math.sin(a))]
         eff["line_drag"]["density"] = float(f"{s['rho']:.9g}")
+    if s["trailing_edge_tape"] == "yes":
+        gen = scene.get("meshes", {}).get("wing", {}).get("generator") if isinstance(scene.get("meshes"), dict) else None
+        if not isinstance(gen, dict) or gen.get("type") != "parafoil":
+            raise InputError(f"{scene_path}: trailing_edge_tape needs the canopy as meshes.wing.generator "
+                             "(type: parafoil)")
+        gen["trailing_edge_tape"] = True
     if s["brake_right"] > 0:
         # The right toggle leaves the held points and is drawn down (-z) with a smooth ramp.
         cons = scene.get("constraints")

@@ -41,6 +41,8 @@ bad "courant 4 5" "expected 'key value'"
 bad $'stl_bulge 0\ncoupled yes' "the structure's own surface"
 bad $'mesh_motion none\ncoupled yes' "mesh_motion none with coupled yes"
 bad "load_relaxation 0" "outside"
+bad "motion_diffusivity cubic" "quadratic, inverse, uniform"
+bad "trailing_edge_tape yes" "trailing_edge_tape needs coupled yes"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 

@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""What accuracy costs in time on the coupled ram-air wing (issue 14, docs/ACCURACY_COST.md "Coupled ram-air
+wing"): the main job's case (cases/coupled/ramair-kt, coupled.settings) at its coarse resolution, with the fluid
+mesh refined one level (resolution medium: cells / 2 at the wing, the step halved to keep Courant 4, the same
+flow time), and with the structure refined (1.5 x the chordwise points and span divisions). Every variant is a
+copy of the case run with ./Allrun.parallel (2 ranks) in OUT/<variant>; the table and the plot compare the
+summary's figures against the wall time of the whole run.
+
+  /usr/bin/python3 scripts/ramair_resolutions.py [--out DIR] [--only coarse,fluid-medium] [--collect]
+
+--collect reads finished runs in OUT instead of running them. Runs take 5 (coarse) to 30 (fluid-medium)
+minutes on the 2-core machine of docs/PERFORMANCE.md. The environment (build/share/fsi/fsi-env.sh) is
+sourced for every run."""
+import argparse
+import json
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+CASE = ROOT / "cases/coupled/ramair-kt"
+ENV = ROOT / "build/share/fsi/fsi-env.sh"
+
+
+def settings_with(text, changes):
+    """coupled.settings with `key value` lines replaced (a key not present is appended)."""
+    lines = text.splitlines()
+    for key, value in changes.items():
+        pat = re.compile(rf"^{re.escape(key)}\s")
+        hit = [i for i, l in enumerate(lines) if pat.match(l)]
+        if hit:
+            lines[hit[0]] = f"{key} {value}"
+        else:
+            lines.append(f"{key} {value}")
+    return "\n".join(lines) + "\n"
+
+
+def structure_with(text, changes):
+    """structure.yaml with generator parameters replaced (`name: value` inside the generator's mapping)."""
+    for key, value in changes.items():
+        new, n = re.subn(rf"\b{re.escape(key)}: [0-9.e+-]+", f"{key}: {value}", text)
+        if n != 1:
+            sys.exit(f"ramair_resolutions: structure.yaml has {n} '{key}:' entries, expected 1")
+        text = new
+    return text
+
+
+# variant: (what it changes, settings changes, structure generator changes)
+VARIANTS = {
+    "coarse": ("the main job", {}, {}),
+    "fluid-medium": ("fluid mesh one level finer (Courant 4: half the step, twice the windows)",
+                     {"resolution": "medium", "rigid_steps": 360, "steps": 400, "write_interval": 40}, {}),
+    "structure-fine": ("structure 1.5 x finer (chordwise points 30, span divisions 3)", {},
+                       {"chordwise_points": 30, "span_divisions": 3}),
+}
+
+
+def run_variant(name, out):
+    _, settings, structure = VARIANTS[name]
+    d = out / name
+    if d.exists():
+        shutil.rmtree(d)
+    shutil.copytree(CASE, d)
+    (d / "run.settings").write_text(settings_with((CASE / "coupled.settings").read_text(), settings))
+    if structure:
+        (d / "structure.yaml").write_text(structure_with((CASE / "structure.yaml").read_text(), structure))
+    t0 = time.monotonic()
+    with open(d / "log.Allrun", "w") as log:
+        p = subprocess.run(["bash", "-c", f". '{ENV}' && ./Allrun.parallel -settings run.settings"], cwd=d,
+                           stdout=log, stderr=subprocess.STDOUT)
+    wall = time.monotonic() - t0
+    (d / "wall_seconds").write_text(f"{wall:.1f}\n")
+    if p.returncode != 0:
+        print(f"ramair_resolutions: {name} failed (exit {p.returncode}); see {d / 'log.Allrun'}", file=sys.stderr)
+    return p.returncode == 0
+
+
+def collect(name, out):
+    d = out / name
+    s = json.loads((d / "summary.json").read_text())
+    c, m = s["coupled"], s["mesh"]
+    skin = None
+    msh = d / "log.fsiGenerate"
+    if msh.exists():
+        hit = re.search(r"wing\.stl\s+(\d+) triangles", msh.read_text())
+        skin = int(hit.group(1)) if hit else None
+    return {
+        "variant": name, "what": VARIANTS[name][0], "cells": m["cells"], "wing_faces": m["wing_faces"],
+        "skin_triangles": skin, "windows": c["windows"], "wall_s": float((d / "wall_seconds").read_text()),
+        "CL": c["CL"], "CD": c["CD"], "L_over_D": c["L_over_D"], "pitch_deg": c["pitch_deg"],
+        "balance": c["equilibrium_relative"], "stress_max_over_mean": c["stress_max_over_mean"],
+        "skin_stress_max_Pa": c["skin_stress_max_Pa"], "line_tension_max_N": c["line_tension_max_N"],
+    }
+
+
+def table(rows):
+    base = rows[0]
+    out = ["| variant | cells; wing faces; skin triangles | windows | wall [s] | CL | CD | L/D | pitch [°] | "
+           "balance | stress max/mean | change of CL, CD, max stress vs coarse |", "|" + "---|" * 11]
+    for r in rows:
+        rel = "—" if r is base else ", ".join(
+            f"{100 * (r[k] / base[k] - 1):+.1f} %" for k in ("CL", "CD", "skin_stress_max_Pa"))
+        out.append(f"| {r['variant']} ({r['what']}) | {r['cells']}; {r['wing_faces']}; {r['skin_triangles']} | "
+                   f"{r['windows']} | {r['wall_s']:.0f} | {r['CL']:.3f} | {r['CD']:.4f} | {r['L_over_D']:.2f} | "
+                   f"{r['pitch_deg']:.2f} | {100 * r['balance']:.1f} % | {r['stress_max_over_mean']:.2f} | {rel} |")
+    return "\n".join(out) + "\n"
+
+
+def plot(rows, png):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    base = rows[0]
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for key, label, mark in (("CL", "CL", "o"), ("CD", "CD", "s"), ("skin_stress_max_Pa", "max principal stress", "^"),
+                             ("pitch_deg", "pitch", "v")):
+        for r in rows:
+            ax.plot(r["wall_s"] / 60, 100 * (r[key] / base[key] - 1), mark, color=f"C{list(VARIANTS).index(r['variant'])}")
+        ax.plot([], [], mark, color="grey", label=label)
+    for r in rows:
+        ax.annotate(r["variant"], (r["wall_s"] / 60, 0), textcoords="offset points", xytext=(4, 6), fontsize=8)
+    ax.axhline(0, color="k", lw=0.5)
+    ax.set_xlabel("wall time of the whole run, 2 ranks [min]")
+    ax.set_ylabel("change against the coarse run [%]")
+    ax.set_title("Coupled ram-air wing: resolution against wall time")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=str(ROOT / "results/ramair-resolutions"))
+    ap.add_argument("--only", default=",".join(VARIANTS))
+    ap.add_argument("--collect", action="store_true")
+    a = ap.parse_args()
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    names = [n for n in a.only.split(",") if n]
+    for n in names:
+        if n not in VARIANTS:
+            sys.exit(f"ramair_resolutions: unknown variant '{n}'; valid: {', '.join(VARIANTS)}")
+    if not a.collect:
+        for n in names:
+            print(f"ramair_resolutions: running {n} in {out / n}", flush=True)
+            run_variant(n, out)
+    rows = [collect(n, out) for n in VARIANTS if (out / n / "summary.json").exists()]
+    if not rows or rows[0]["variant"] != "coarse":
+        sys.exit("ramair_resolutions: the coarse run is the reference and has no summary.json")
+    (out / "resolutions.json").write_text(json.dumps(rows, indent=1))
+    (out / "resolutions.md").write_text(table(rows))
+    plot(rows, out / "resolutions.png")
+    print(table(rows))
+
+
+if __name__ == "__main__":
+    main()

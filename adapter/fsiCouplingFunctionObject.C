@@ -288,8 +288,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
          << " interface nodes, ";
     if (equilibrium_)
       Info << "equilibrium mode: " << o.integer("equilibriumSteps")
-           << " damped pseudo-steps per window (kinetic damping, each from " << o.text("equilibriumStart").c_str()
-           << ")";
+           << " damped pseudo-steps per window (kinetic damping"
+           << (o.text("equilibriumStart") == "carry" ? ", the motion carried across windows" : "") << ")";
     else
       Info << structure_->subcyclesFor(dt) << " structural steps per window of " << dt << " s";
     if (o.real("loadRelaxation") < 1) Info << ", load relaxation " << o.real("loadRelaxation");

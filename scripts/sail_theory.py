@@ -35,6 +35,7 @@ import argparse
 import functools
 import json
 import math
+import os
 import sys
 
 import numpy as np
@@ -292,7 +293,7 @@ def solve(alpha_deg, elasticity, pretension=0.0, terms=DEFAULT_TERMS, shape_poin
     z[0] = 0.0
     return {
         "alpha_deg": alpha_deg, "elasticity": elasticity, "pretension": pretension, "terms": terms,
-        "C_L": c_l, "C_L_flat_plate": 2 * math.pi * alpha, "C_T": ct, "C_m_le": c_m,
+        "C_L": c_l + 0.0, "C_L_flat_plate": 2 * math.pi * alpha, "C_T": ct, "C_m_le": c_m + 0.0,
         "camber_max": z_max, "x_camber_max": x_max, "strain": strain(A, w, ct_eval),
         "first_eigenvalue": lam1, "load_coefficients": [float(a) for a in A[:8]],
         "shape": [[float(a), float(b)] for a, b in zip(x, z)],
@@ -417,4 +418,8 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except BrokenPipeError:  # output cut short by the reader (e.g. `| head`): not an error of the theory
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(0)

@@ -68,13 +68,13 @@ def run_variant(name, out):
     if structure:
         (d / "structure.yaml").write_text(structure_with((CASE / "structure.yaml").read_text(), structure))
     t0 = time.monotonic()
-    with open(d / "log.Allrun", "w") as log:
+    with open(d / "Allrun.out", "w") as log:  # not log.*: Allrun takes those for an earlier run
         p = subprocess.run(["bash", "-c", f". '{ENV}' && ./Allrun.parallel -settings run.settings"], cwd=d,
                            stdout=log, stderr=subprocess.STDOUT)
     wall = time.monotonic() - t0
     (d / "wall_seconds").write_text(f"{wall:.1f}\n")
     if p.returncode != 0:
-        print(f"ramair_resolutions: {name} failed (exit {p.returncode}); see {d / 'log.Allrun'}", file=sys.stderr)
+        print(f"ramair_resolutions: {name} failed (exit {p.returncode}); see {d / 'Allrun.out'}", file=sys.stderr)
     return p.returncode == 0
 
 

@@ -80,6 +80,26 @@ be a run with a finer window and tighter tolerance. The adapter writes what such
 """
 
 
+def ramair_section():
+    """The coupled ram-air wing's resolutions against wall time: the rows scripts/ramair_resolutions.py --docs
+    stored (its runs take half an hour, so this script reads them instead of repeating them)."""
+    import ramair_resolutions
+    path = ROOT / "docs/data/ramair_resolutions.json"
+    head = "## Coupled ram-air wing: fluid and structure resolution against wall time\n"
+    if not path.exists():
+        return [head, "Not measured yet: `/usr/bin/python3 scripts/ramair_resolutions.py --docs` (half an hour).\n"]
+    d = json.loads(path.read_text())
+    rows = d["rows"]
+    return [head,
+            f"The main job's case (`cases/coupled/ramair-kt`, `coupled.settings`, 2 ranks), the fluid mesh one "
+            f"level finer, and the structure 1.5× finer; the wall time is the whole `Allrun.parallel` (meshing, "
+            f"rigid start, coupled windows, reconstruction, checkMesh, plots). Measured by `{d['command']}` on "
+            f"{d['machine']}, finished {d['finished']}, commit {d['commit']}. The coupled wing has not trimmed "
+            f"after its windows (docs/RAMAIR.md): the rows compare the same flow time, not converged states.\n",
+            ramair_resolutions.table(rows),
+            "![ram-air resolutions](img/ramair_resolutions.png)\n"]
+
+
 def summary_lines(res):
     """The top table: one computed sentence per knob (the most typical step)."""
     out = []
@@ -169,6 +189,7 @@ def write_doc(res, out, command, started, seconds):
         md += cost_coupled.coupled_section(res["coupled"])
     else:
         md.append(f"## Coupled knobs (added-mass problem): not measured in this run\n\n{res['coupled_missing']}\n")
+    md += ramair_section()
     md.append(SAIL_NOT_YET)
     (out / "ACCURACY_COST.md").write_text("\n".join(md))
 

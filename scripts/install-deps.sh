@@ -10,9 +10,10 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev
   libhdf5-dev hdf5-tools gmsh libnanoflann-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-numpy python3-matplotlib python3-h5py python3-yaml
+  python3 python3-numpy python3-matplotlib python3-h5py python3-yaml python3-scipy
 )
 # python3-yaml: cases/coupled/summarize.py reads the coupled cases' reference.yaml.
+# python3-scipy: scripts/sail_theory.py (linear algebra and root finding of the sail reference; test sail.theory).
 
 missing=()
 for p in "${packages[@]}"; do

@@ -6,12 +6,15 @@ flow time), and with the structure refined (1.5 x the chordwise points and span 
 copy of the case run with ./Allrun.parallel (2 ranks) in OUT/<variant>; the table and the plot compare the
 summary's figures against the wall time of the whole run.
 
-  /usr/bin/python3 scripts/ramair_resolutions.py [--out DIR] [--only coarse,fluid-medium] [--collect]
+  /usr/bin/python3 scripts/ramair_resolutions.py [--out DIR] [--only coarse,fluid-medium] [--collect] [--docs]
 
---collect reads finished runs in OUT instead of running them. Runs take 5 (coarse) to 30 (fluid-medium)
+--collect reads finished runs in OUT instead of running them. --docs also stores the rows with the machine,
+date and commit in docs/data/ramair_resolutions.json and the plot in docs/img/ramair_resolutions.png, from
+where scripts/accuracy_cost.py puts them into docs/ACCURACY_COST.md. Runs take 5 (coarse) to 30 (fluid-medium)
 minutes on the 2-core machine of docs/PERFORMANCE.md. The environment (build/share/fsi/fsi-env.sh) is
 sourced for every run."""
 import argparse
+import datetime
 import json
 import re
 import shutil
@@ -136,6 +139,7 @@ def main():
     ap.add_argument("--out", default=str(ROOT / "results/ramair-resolutions"))
     ap.add_argument("--only", default=",".join(VARIANTS))
     ap.add_argument("--collect", action="store_true")
+    ap.add_argument("--docs", action="store_true", help="store the rows and the plot under docs/ (see above)")
     a = ap.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -154,6 +158,16 @@ def main():
     (out / "resolutions.md").write_text(table(rows))
     plot(rows, out / "resolutions.png")
     print(table(rows))
+    if a.docs:
+        sys.path.insert(0, str(ROOT / "scripts"))
+        from accuracy_cost import git_commit, machine  # noqa: E402 (the same machine line as the other tables)
+        stamp = datetime.datetime.fromtimestamp(min((out / r["variant"] / "wall_seconds").stat().st_mtime
+                                                    for r in rows), datetime.timezone.utc)
+        meta = {"command": "/usr/bin/python3 scripts/ramair_resolutions.py --docs", "machine": machine(),
+                "finished": stamp.strftime("%Y-%m-%d %H:%M UTC"), "commit": git_commit(), "rows": rows}
+        (ROOT / "docs/data").mkdir(exist_ok=True)
+        (ROOT / "docs/data/ramair_resolutions.json").write_text(json.dumps(meta, indent=1) + "\n")
+        shutil.copy(out / "resolutions.png", ROOT / "docs/img/ramair_resolutions.png")
 
 
 if __name__ == "__main__":

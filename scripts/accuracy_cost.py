@@ -96,8 +96,32 @@ def ramair_section():
             f"rigid start, coupled windows, reconstruction, checkMesh, plots). Measured by `{d['command']}` on "
             f"{d['machine']}, finished {d['finished']}, commit {d['commit']}. The coupled wing has not trimmed "
             f"after its windows (docs/RAMAIR.md): the rows compare the same flow time, not converged states.\n",
-            ramair_resolutions.table(rows),
+            ramair_resolutions.table(rows)] + ramair_reading(rows) + [
             "![ram-air resolutions](img/ramair_resolutions.png)\n"]
+
+
+def ramair_reading(rows):
+    """What the ram-air rows say, computed from them: which refined runs ended early or unbalanced, and whether
+    any refined run gives a resolution error of the coarse answer."""
+    lines, usable = [], []
+    for r in rows[1:]:
+        if "stopped" in r:
+            lines.append(f"- {r['variant']}: {r['stopped']} after {r['wall_s']:.0f} s: no figures at this "
+                         "resolution (the mesh guard names the cell; docs/COUPLING.md \"When the run stops\").")
+        elif r["balance"] > 0.05:
+            lines.append(f"- {r['variant']}: the supports and the applied load differ by {100 * r['balance']:.0f} % of the load "
+                         "when the run ends: the canopy is still moving, its figures are not this resolution's answer.")
+        else:
+            usable.append(r)
+    if usable:
+        lines.append("- resolution error of the coarse run, from " + ", ".join(r["variant"] for r in usable) + ": "
+                     + "; ".join(f"CL {100 * (r['CL'] / rows[0]['CL'] - 1):+.1f} %, CD "
+                                 f"{100 * (r['CD'] / rows[0]['CD'] - 1):+.1f} % for {r['wall_s'] / rows[0]['wall_s']:.1f}× "
+                                 "the time" for r in usable) + ".")
+    else:
+        lines.append("- so the coarse run's resolution error is not measured yet: no refined run reached a state "
+                     "to compare with.")
+    return lines + [""]
 
 
 def summary_lines(res):

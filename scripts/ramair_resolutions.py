@@ -81,18 +81,32 @@ def run_variant(name, out):
     return p.returncode == 0
 
 
+def stop_reason(d):
+    """Why a run ended early: the mesh guard's or OpenFOAM's first fatal line in log.pimpleFoam."""
+    log = d / "log.pimpleFoam"
+    text = log.read_text(errors="replace") if log.exists() else ""
+    hit = re.search(r"mesh guard: t = ([0-9.e+-]+) s, window (\d+)", text)
+    if hit:
+        cell = re.search(r"Worst cell: \d+(?: on rank \d+)? at \(([^)]*)\)", text)
+        where = f" next to ({', '.join(f'{float(v):.2f}' for v in cell.group(1).split())})" if cell else ""
+        return f"mesh guard stop in window {hit.group(2)} (t = {float(hit.group(1)):.3f} s){where}"
+    hit = re.search(r"FOAM FATAL[^\n]*\n([^\n]*)", text)
+    return f"failed: {hit.group(1).strip()[:80]}" if hit else "failed (see Allrun.out)"
+
+
 def collect(name, out):
     d = out / name
+    if not (d / "summary.json").exists():
+        return {"variant": name, "what": VARIANTS[name][0], "stopped": stop_reason(d),
+                "wall_s": float((d / "wall_seconds").read_text())}
     s = json.loads((d / "summary.json").read_text())
     c, m = s["coupled"], s["mesh"]
-    skin = None
-    msh = d / "log.fsiGenerate"
-    if msh.exists():
-        hit = re.search(r"wing\.stl\s+(\d+) triangles", msh.read_text())
-        skin = int(hit.group(1)) if hit else None
+    import h5py  # the structure's own triangles (skin and ribs), from its results
+    with h5py.File(d / "structure/results.h5", "r") as h:
+        triangles = int(h["mesh/triangles"].shape[0])
     return {
         "variant": name, "what": VARIANTS[name][0], "cells": m["cells"], "wing_faces": m["wing_faces"],
-        "skin_triangles": skin, "windows": c["windows"], "wall_s": float((d / "wall_seconds").read_text()),
+        "structure_triangles": triangles, "windows": c["windows"], "wall_s": float((d / "wall_seconds").read_text()),
         "CL": c["CL"], "CD": c["CD"], "L_over_D": c["L_over_D"], "pitch_deg": c["pitch_deg"],
         "balance": c["equilibrium_relative"], "stress_max_over_mean": c["stress_max_over_mean"],
         "skin_stress_max_Pa": c["skin_stress_max_Pa"], "line_tension_max_N": c["line_tension_max_N"],
@@ -101,12 +115,16 @@ def collect(name, out):
 
 def table(rows):
     base = rows[0]
-    out = ["| variant | cells; wing faces; skin triangles | windows | wall [s] | CL | CD | L/D | pitch [°] | "
+    out = ["| variant | fluid cells; wing faces; structure triangles | windows | wall [s] | CL | CD | L/D | pitch [°] | "
            "balance | stress max/mean | change of CL, CD, max stress vs coarse |", "|" + "---|" * 11]
     for r in rows:
+        if "stopped" in r:
+            cells = [f"{r['variant']} ({r['what']})", "", "", f"{r['wall_s']:.0f}", r["stopped"]] + [""] * 6
+            out.append("| " + " | ".join(cells) + " |")
+            continue
         rel = "—" if r is base else ", ".join(
             f"{100 * (r[k] / base[k] - 1):+.1f} %" for k in ("CL", "CD", "skin_stress_max_Pa"))
-        out.append(f"| {r['variant']} ({r['what']}) | {r['cells']}; {r['wing_faces']}; {r['skin_triangles']} | "
+        out.append(f"| {r['variant']} ({r['what']}) | {r['cells']}; {r['wing_faces']}; {r['structure_triangles']} | "
                    f"{r['windows']} | {r['wall_s']:.0f} | {r['CL']:.3f} | {r['CD']:.4f} | {r['L_over_D']:.2f} | "
                    f"{r['pitch_deg']:.2f} | {100 * r['balance']:.1f} % | {r['stress_max_over_mean']:.2f} | {rel} |")
     return "\n".join(out) + "\n"
@@ -117,6 +135,7 @@ def plot(rows, png):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     base = rows[0]
+    rows = [r for r in rows if "stopped" not in r]  # a stopped run has no figures to plot
     fig, ax = plt.subplots(figsize=(7, 4.2))
     for key, label, mark in (("CL", "CL", "o"), ("CD", "CD", "s"), ("skin_stress_max_Pa", "max principal stress", "^"),
                              ("pitch_deg", "pitch", "v")):
@@ -151,8 +170,8 @@ def main():
         for n in names:
             print(f"ramair_resolutions: running {n} in {out / n}", flush=True)
             run_variant(n, out)
-    rows = [collect(n, out) for n in VARIANTS if (out / n / "summary.json").exists()]
-    if not rows or rows[0]["variant"] != "coarse":
+    rows = [collect(n, out) for n in VARIANTS if (out / n / "wall_seconds").exists()]
+    if not rows or rows[0]["variant"] != "coarse" or "stopped" in rows[0]:
         sys.exit("ramair_resolutions: the coarse run is the reference and has no summary.json")
     (out / "resolutions.json").write_text(json.dumps(rows, indent=1))
     (out / "resolutions.md").write_text(table(rows))

@@ -85,7 +85,8 @@ def local_maxima(t, v):
 
 
 def measure(t, v, spec):
-    """One scalar from a history: first local maximum after t_min, global max/min in a window, value at t."""
+    """One scalar from a history: first local maximum after t_min, global max/min in a window, value at t,
+    time average over a window."""
     kind = spec["measure"]
     lo, hi = spec.get("from", -1e300), spec.get("to", 1e300)
     sel = [(a, b) for a, b in zip(t, v) if lo <= a <= hi]
@@ -100,6 +101,11 @@ def measure(t, v, spec):
         return min(sel, key=lambda p: p[1])
     if kind == "final":
         return sel[-1]
+    if kind == "mean":  # the time average over the window (trapezoidal), reported at the window's end
+        if len(sel) < 2:
+            return sel[-1]
+        area = sum(0.5 * (b[1] + a[1]) * (b[0] - a[0]) for a, b in zip(sel, sel[1:]))
+        return sel[-1][0], area / (sel[-1][0] - sel[0][0])
     raise ValueError(f"unknown measure {kind}")
 
 
@@ -146,6 +152,51 @@ def momentum_balance(case, rows, spec):
     return t, structure[t], channel
 
 
+def coefficient_header(path):
+    """The directions and reference values a forceCoeffs object writes at the top of coefficient.dat."""
+    head = {}
+    for line in open(path):
+        if not line.startswith("#"):
+            break
+        key, _, value = line[1:].partition(":")
+        value = value.strip()
+        if value.startswith("("):
+            head[key.strip()] = [float(x) for x in value.strip("()").split()]
+        elif value:
+            try:
+                head[key.strip()] = float(value)
+            except ValueError:
+                pass
+    return head
+
+
+def openfoam_coefficients(case, rows, spec):
+    """OpenFOAM's own integration of the interface patches (a forceCoeffs object: lift and drag coefficients
+    along its liftDir and dragDir) against the load the structure received in the same window, projected on
+    the same directions: the largest difference over the windows, relative to the window's larger coefficient.
+    An independent check of the transfer (the adapter's fluid-side sum is compared in every window anyway)."""
+    folder = os.path.join(case, "postProcessing", spec["coefficients"])
+    files = sorted(glob.glob(os.path.join(folder, "*", "coefficient.dat")))
+    if not files:
+        return {"windows": 0, "relative_difference": None, "within": False, "tolerance": spec["tolerance"]}
+    head = coefficient_header(files[0])
+    data = all_parts(folder, "coefficient.dat")  # columns after time: Cd Cs Cl ...
+    qa = 0.5 * spec.get("rho", 1.0) * head["magUInf"] ** 2 * head["Aref"]
+    worst, n = 0.0, 0
+    for r in rows:
+        t = float(r["time"])
+        c = next((v for k, v in data.items() if abs(k - t) <= 1e-9 * max(1.0, t)), None)
+        if c is None:
+            continue
+        f = [float(r["F" + a + "_structure"]) for a in "xyz"]
+        cl = sum(a * b for a, b in zip(f, head["liftDir"])) / qa
+        cd = sum(a * b for a, b in zip(f, head["dragDir"])) / qa
+        worst = max(worst, max(abs(cl - c[2]), abs(cd - c[0])) / max(abs(c[2]), abs(c[0])))
+        n += 1
+    return {"windows": n, "relative_difference": worst if n else None, "tolerance": spec["tolerance"],
+            "within": n > 0 and worst <= spec["tolerance"]}
+
+
 def mesh_quality(case, spec):
     """checkMesh of the last time (log.checkMesh): 'Mesh OK.' and the largest non-orthogonality/skewness."""
     log = open(os.path.join(case, "log.checkMesh")).read()
@@ -157,6 +208,24 @@ def mesh_quality(case, spec):
     out["within"] = out["mesh_ok"] and all(
         out[k] is not None and out[k] <= spec[k] for k in ("max_non_orthogonality", "max_skewness"))
     out["limits"] = {k: spec[k] for k in ("max_non_orthogonality", "max_skewness")}
+    return out
+
+
+def force_smoothness(rows, spec):
+    """How much of an interface force's window-to-window change is a two-window alternation: the RMS of its
+    second difference F[k+1] - 2 F[k] + F[k-1] over the windows from `from` on, divided by 4 x the RMS of F
+    itself. A force that changes sign every window (F[k] = (-1)^k a) gives 1, a constant or linear one 0, and
+    a sine of n windows per period sin^2(pi/n) (0.011 at 30 windows per period)."""
+    col, start = spec["column"], spec.get("from", -1e300)
+    f = [float(r[col]) for r in rows if float(r["time"]) >= start]
+    out = {"column": col, "from": start, "windows": len(f), "limit": spec["max_alternation"]}
+    if len(f) < 3:
+        out.update(alternation=None, within=False)
+        return out
+    d2 = [f[k + 1] - 2 * f[k] + f[k - 1] for k in range(1, len(f) - 1)]
+    rms = lambda x: (sum(a * a for a in x) / len(x)) ** 0.5
+    out["alternation"] = rms(d2) / (4 * rms(f)) if rms(f) > 0 else None
+    out["within"] = out["alternation"] is not None and out["alternation"] <= spec["max_alternation"]
     return out
 
 
@@ -200,6 +269,16 @@ def report(out):
         lines.append(f"  mesh at the end: {'Mesh OK' if q['mesh_ok'] else 'checkMesh FAILED'}, non-orthogonality "
                      f"{number(q['max_non_orthogonality'])} (limit {q['limits']['max_non_orthogonality']}), "
                      f"skewness {number(q['max_skewness'])} (limit {q['limits']['max_skewness']}): "
+                     f"{'PASS' if q['within'] else 'outside'}")
+    if "openfoam_coefficients" in out:
+        q = out["openfoam_coefficients"]
+        lines.append(f"  OpenFOAM's forceCoeffs vs the structure's load over {q['windows']} windows: largest relative "
+                     f"difference {number(q['relative_difference'])} (limit {q['tolerance']}): "
+                     f"{'PASS' if q['within'] else 'outside'}")
+    if "force_smoothness" in out:
+        q = out["force_smoothness"]
+        lines.append(f"  {q['column']} window to window from t = {number(q['from'])} s: alternation "
+                     f"{number(q['alternation'])} (RMS second difference / 4 RMS; limit {q['limit']}): "
                      f"{'PASS' if q['within'] else 'outside'}")
     d = out["interface_force_relative_difference"]
     lines.append(f"  interface force, fluid vs structure side: largest relative difference {d:.1e} over all "
@@ -257,6 +336,12 @@ def main():
     if "mesh_quality" in checks:
         out["mesh_quality"] = mesh_quality(case, checks["mesh_quality"])
         out["all_checks_within_tolerance"] &= out["mesh_quality"]["within"]
+    if "openfoam_coefficients" in checks:
+        out["openfoam_coefficients"] = openfoam_coefficients(case, rows, checks["openfoam_coefficients"])
+        out["all_checks_within_tolerance"] &= out["openfoam_coefficients"]["within"]
+    if "force_smoothness" in checks:
+        out["force_smoothness"] = force_smoothness(rows, checks["force_smoothness"])
+        out["all_checks_within_tolerance"] &= out["force_smoothness"]["within"]
     json.dump(out, open(path, "w"), indent=2)
     print(report(out))
     return 0

@@ -53,6 +53,31 @@ def main():
         print(f"{os.path.basename(d)}: times {t}, values {v}, {stats}, force difference {force}:"
               f" {'ok' if good else 'WRONG'}")
         ok &= good
+    # the window-to-window alternation measure against its closed forms: a force changing sign every window
+    # gives 1, a linear ramp 0, a sine of n windows per period sin^2(pi/n); windows before `from` are ignored
+    import math
+    def rows_of(values):
+        return [{"time": str(0.01 * k), "Fz_fluid": str(v)} for k, v in enumerate(values)]
+    spec = {"column": "Fz_fluid", "max_alternation": 0.05}
+    cases = [("alternating", [(-1) ** k * 0.3 for k in range(40)], 1.0),
+             ("ramp", [1 + 0.1 * k for k in range(40)], 0.0),
+             ("sine n=30", [math.sin(2 * math.pi * k / 30) for k in range(300)], math.sin(math.pi / 30) ** 2)]
+    for name, values, expect in cases:
+        got = summarize.force_smoothness(rows_of(values), spec)["alternation"]
+        good = abs(got - expect) < 1e-2 * max(expect, 1e-3)  # the sine: end windows
+        print(f"alternation of {name}: {got:.6g} (closed form {expect:.6g}): {'ok' if good else 'WRONG'}")
+        ok &= good
+    spiky = [1.0 + (5.0 if k == 3 else 0.0) for k in range(40)]  # a start-up spike before `from`
+    late = summarize.force_smoothness(rows_of(spiky), dict(spec, **{"from": 0.05}))
+    good = late["alternation"] == 0.0 and late["within"] and late["windows"] == 35
+    print(f"alternation after the start-up: {late}: {'ok' if good else 'WRONG'}")
+    ok &= good
+    # the time average over a window: exact for a linear history (trapezoidal rule), on uneven steps too
+    t = [0.0, 0.5, 1.0, 1.7, 2.0, 2.2, 3.0, 3.5]
+    when, mean = summarize.measure(t, [3 * a + 1 for a in t], {"measure": "mean", "from": 0.9, "to": 3.1})
+    good = when == 3.0 and abs(mean - (3 * 2.0 + 1)) < 1e-12
+    print(f"time average of 3 t + 1 over 1 .. 3: {mean} at t = {when} (exact 7 at 3): {'ok' if good else 'WRONG'}")
+    ok &= good
     print("PASS" if ok else "FAIL")
     return 0 if ok else 1
 

@@ -473,8 +473,9 @@ TEST(HardCoupling, VeryNonMatchingMeshesGiveTheMatchingCoupledAnswer) {
   const std::vector<VectorXd> mono = monolithicFilm(mu, c.window, c.windows);
   const FilmRun matching = coupledFilm(mu, c);
   ASSERT_FALSE(matching.blewUp);
-  const InterfaceMesh& structure = film(1.0, LoadInterpolation::ConstantMean)->interfaceMesh();
-  const Eigen::Index w = 3 * Eigen::Index(nearestNode(structure, 0.0, 0.0)) + 2;
+  const Eigen::Index w =
+      3 * Eigen::Index(nearestNode(film(1.0, LoadInterpolation::ConstantMean)->interfaceMesh(), 0.0, 0.0)) +
+      2;
   const double discretisation = relativeDifference(component(matching.d, w), component(mono, w));
   std::printf("matching: iterations mean %.2f, centre to monolithic %.3g\n", matching.stats.meanIterations(),
               discretisation);

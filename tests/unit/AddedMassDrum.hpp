@@ -33,7 +33,8 @@ constexpr double kDrumPext = 200.0;  // Pa
 // displacement history by second differences (the fluid's own time discretisation).
 class AddedMassFluid final : public coupling::FluidSolver {
  public:
-  AddedMassFluid(int nodes, double addedMass, double t0) : n_(nodes), ma_(addedMass), tWindow_(t0) {
+  AddedMassFluid(int nodes, double addedMass, double t0, double pressure = kDrumPext)
+      : n_(nodes), ma_(addedMass), pext_(pressure), tWindow_(t0) {
     wPrev_ = wCur_ = last_ = Eigen::VectorXd::Zero(3 * nodes);
   }
   Eigen::VectorXd solve(double t, double dt, const Eigen::VectorXd& d) override {
@@ -46,7 +47,7 @@ class AddedMassFluid final : public coupling::FluidSolver {
     Eigen::VectorXd p(n_);
     for (int i = 0; i < n_; ++i) {
       const double a = (d[3 * i + 2] - 2 * wCur_[3 * i + 2] + wPrev_[3 * i + 2]) / (dt * dt);
-      p[i] = kDrumPext - ma_ * a;
+      p[i] = pext_ - ma_ * a;
     }
     return p;
   }
@@ -55,7 +56,7 @@ class AddedMassFluid final : public coupling::FluidSolver {
 
  private:
   int n_;
-  double ma_, tWindow_;
+  double ma_, pext_, tWindow_;
   Eigen::VectorXd wPrev_, wCur_, last_;
 };
 
@@ -66,6 +67,10 @@ struct DrumRun {
   int windows = 0;
   long structuralSteps = 0;
   double wallSeconds = 0;  // the coupling loop only
+  int notConverged = 0;    // windows accepted without convergence
+  int firstWindowIterations = 0;
+  bool firstWindowConverged = false;
+  std::string diagnosis;  // what the structure said when it stopped on a non-finite state
 };
 
 struct DrumSettings {
@@ -76,6 +81,7 @@ struct DrumSettings {
   double relativeTolerance = 1e-8;
   int maxIterations = 100;
   int minSubcycles = 1;
+  double pressure = kDrumPext;  // p_ext, applied from t = 0 [Pa]
 };
 
 /// The coupled run; `acceleration` for the implicit scheme (null for the staggered one).
@@ -83,7 +89,7 @@ inline DrumRun runAddedMassDrum(const DrumSettings& c, std::unique_ptr<coupling:
   using namespace fsi::coupling;
   StructureParticipant s(structure::loadSceneFromString(addedMassDrumScene(), "drum.yaml"));
   s.setMinSubcycles(c.minSubcycles);
-  AddedMassFluid fluid(s.numInterfaceNodes(), c.addedMass, 0.0);
+  AddedMassFluid fluid(s.numInterfaceNodes(), c.addedMass, 0.0, c.pressure);
   CouplingConfig cfg;
   cfg.kind = c.kind;
   cfg.timeWindowSize = c.window;
@@ -91,7 +97,7 @@ inline DrumRun runAddedMassDrum(const DrumSettings& c, std::unique_ptr<coupling:
   cfg.relativeTolerance = c.relativeTolerance;
   cfg.maxIterations = c.maxIterations;
   CouplingScheme scheme(cfg, s, std::move(acceleration));
-  const Eigen::VectorXd p0 = Eigen::VectorXd::Constant(s.numInterfaceNodes(), kDrumPext);
+  const Eigen::VectorXd p0 = Eigen::VectorXd::Constant(s.numInterfaceNodes(), c.pressure);
   scheme.initialize(0.0, Eigen::VectorXd::Zero(3 * s.numInterfaceNodes()), p0);
   DrumRun r;
   int centre = 0;
@@ -103,9 +109,11 @@ inline DrumRun runAddedMassDrum(const DrumSettings& c, std::unique_ptr<coupling:
   const auto t0 = std::chrono::steady_clock::now();
   while (scheme.isCouplingOngoing()) {
     try {
-      runTimeWindow(scheme, fluid);
-    } catch (const std::runtime_error&) {  // the structure stopped on a non-finite state: unstable
+      const WindowReport w = runTimeWindow(scheme, fluid);
+      if (w.window == 0) r.firstWindowIterations = w.iterations, r.firstWindowConverged = w.converged;
+    } catch (const std::runtime_error& e) {  // the structure stopped on a non-finite state: unstable
       r.finite = false;
+      r.diagnosis = e.what();
       break;
     }
     const double w = scheme.acceptedDisplacement()[3 * centre + 2];
@@ -117,6 +125,7 @@ inline DrumRun runAddedMassDrum(const DrumSettings& c, std::unique_ptr<coupling:
   r.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.windows = scheme.statistics().windows;
   r.structuralSteps = s.structuralSteps();
+  r.notConverged = scheme.statistics().notConverged;
   if (!r.finite) return r;
   r.centre = scheme.acceptedDisplacement()[3 * centre + 2];
   r.meanIterations = scheme.statistics().meanIterations();
@@ -126,12 +135,13 @@ inline DrumRun runAddedMassDrum(const DrumSettings& c, std::unique_ptr<coupling:
 /// The monolithic equivalent: the film alone with areal mass ρt + m_a, to tEnd; its centre displacement.
 /// `outDir`: where the run writes its results (one folder per caller: tests run in parallel processes).
 inline double addedMassDrumMonolithic(double addedMass, double tEnd, const std::string& outDir,
-                                      double safety = 0.9) {
+                                      double safety = 0.9, double pressure = kDrumPext) {
   // Areal mass ρt + m_a through the density: (1000·1e-3 + m_a)/1e-3.
   const double rho = (1.0 + addedMass) / 1e-3;
   structure::Scene sc = structure::loadSceneFromString(
       addedMassDrumScene(), "drum.yaml",
-      {"materials.film.density=" + std::to_string(rho), "effects={pressure: {triangles: sheet, value: 200}}",
+      {"materials.film.density=" + std::to_string(rho),
+       "effects={pressure: {triangles: sheet, value: " + std::to_string(pressure) + "}}",
        "time.end=" + std::to_string(tEnd), "time.safety=" + std::to_string(safety)});
   structure::RunOptions opt;
   opt.outDir = outDir;

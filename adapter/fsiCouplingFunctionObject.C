@@ -211,6 +211,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       // Projection structure -> each fluid patch, on the reference geometry.
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));
+      opt.quadratureLevel =
+          o.isWord("quadratureLevel") ? fsi::coupling::kAutoQuadrature : int(o.integer("quadratureLevel"));
       opt.tolerance = o.given("mapTolerance") ? o.real("mapTolerance")
                                               : 0.25 * structure_->interfaceMesh().meanEdgeLength();
       for (const auto& ip : interfaces_) {
@@ -218,8 +220,9 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
             new fsi::coupling::L2Projection(structure_->interfaceMesh(), ip->referenceMesh(), opt));
         const auto& r = maps_.back()->report();
         Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
-             << " structure nodes, " << fsi::coupling::toString(opt.mass) << " L2 projection, largest gap "
-             << r.maxGap << " m, set up in " << r.setupSeconds << " s" << endl;
+             << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass())
+             << " L2 projection (quadrature level " << r.quadratureLevel << "), largest gap " << r.maxGap
+             << " m, set up in " << r.setupSeconds << " s" << endl;
         if (!r.allMapped()) {
           FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
                                        << ip->name() << " are farther than mapTolerance " << opt.tolerance

@@ -321,7 +321,7 @@ int main(int argc, char** argv) {
       "absolute distance beyond which a point is unmapped (default 0.25 x the larger mean edge length)");
   mapCheck->add_option("--json", mapJson, "also write the results to this JSON file");
   mapCheck->add_option("--variant", mapVariant,
-                       "projection: auto (default: consistent up to 20000 target nodes, dual above), "
+                       "projection: auto (default: consistent up to 5000 target nodes, dual above), "
                        "consistent, lumped or dual");
   mapCheck->add_option("--quadrature-level", mapLevel,
                        "split each target triangle into level^2 for quadrature: auto (default, from the "

@@ -38,7 +38,7 @@ inline const char* toString(MassMatrix m) {
   }
   return "?";
 }
-inline constexpr int kAutoConsistentMaxNodes = 20000;
+inline constexpr int kAutoConsistentMaxNodes = 5000;
 /// The variant Auto stands for on a target of `targetNodes` nodes; any other variant is itself.
 inline MassMatrix resolveMass(MassMatrix m, int targetNodes) {
   if (m != MassMatrix::Auto) return m;

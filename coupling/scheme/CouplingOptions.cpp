@@ -444,7 +444,7 @@ OptionSchema couplingOptionSchema() {
   coupled.push_back(
       wordSpec("projection", OptionType::Choice, toString(MassMatrix::Auto), massMatrixNames(),
                "L2 projection between the non-matching interface meshes (auto: consistent up to "
-               "20000 fluid points, dual above)"));
+               "5000 fluid points, dual above)"));
   OptionSpec quadrature = integerOption(
       "quadratureLevel", "auto", Bound{1, true}, Bound{double(kMaxQuadratureLevel), true},
       "sub-triangles per fluid face edge for the projection's quadrature; auto: from the meshes' edge ratio");

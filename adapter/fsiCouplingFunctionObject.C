@@ -211,6 +211,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       // Projection structure -> each fluid patch, on the reference geometry.
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));
+      opt.gapCorrection = o.flag("gapCorrection");
       opt.quadratureLevel =
           o.isWord("quadratureLevel") ? fsi::coupling::kAutoQuadrature : int(o.integer("quadratureLevel"));
       opt.tolerance = o.given("mapTolerance") ? o.real("mapTolerance")

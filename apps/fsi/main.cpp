@@ -183,7 +183,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
                     const std::string& variant, const std::string& quadratureLevel,
-                    const std::vector<std::string>& sets) {
+                    const std::vector<std::string>& sets, bool gapCorrection) {
   // No run to stop cleanly here: Ctrl-C ends the program as usual (and one pressed during start-up does).
   std::signal(SIGINT, SIG_DFL);
   if (gStop.requested()) return 130;
@@ -213,6 +213,7 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
   const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterfaceOrScene(src, sets);
   const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterfaceOrScene(dst, sets);
   opt.tolerance = tolerance;
+  opt.gapCorrection = gapCorrection;
   const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
   fmt::print("{}", r.summary());
   if (!jsonOut.empty()) {
@@ -310,6 +311,7 @@ int main(int argc, char** argv) {
   std::string mapVariant = "auto";
   std::string mapLevel = "auto";
   std::vector<std::string> mapSets;
+  bool mapNoGapCorrection = false;
   mapCheck
       ->add_option(
           "source", mapSrc,
@@ -326,6 +328,8 @@ int main(int argc, char** argv) {
   mapCheck->add_option("--quadrature-level", mapLevel,
                        "split each target triangle into level^2 for quadrature: auto (default, from the "
                        "meshes' edge-length ratio) or 1..64");
+  mapCheck->add_flag("--no-gap-correction", mapNoGapCorrection,
+                     "project without carrying fields across the gap of curved meshes (docs/PROJECTION.md)");
   mapCheck->add_option("--set", mapSets,
                        "override a value of the scene side(s): key.path=value (repeatable)");
 
@@ -375,7 +379,7 @@ int main(int argc, char** argv) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))
         throw fsi::InputError(fmt::format("--tolerance {}: must be a finite distance >= 0", mapTolerance));
       return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
-                             mapVariant, mapLevel, mapSets);
+                             mapVariant, mapLevel, mapSets, !mapNoGapCorrection);
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
     if (*generate) return generateCommand(genScene, genOut, genSets);

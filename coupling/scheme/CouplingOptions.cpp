@@ -450,6 +450,9 @@ OptionSchema couplingOptionSchema() {
       "sub-triangles per fluid face edge for the projection's quadrature; auto: from the meshes' edge ratio");
   quadrature.choices = {"auto"};
   coupled.push_back(quadrature);
+  coupled.push_back(wordSpec("gapCorrection", OptionType::Switch, "yes", {},
+                             "projection: carry fields across the gap between curved non-matching meshes "
+                             "(exact linear fields and moment; docs/PROJECTION.md)"));
   OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
                                        "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";

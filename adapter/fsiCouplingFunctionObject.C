@@ -212,6 +212,12 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));
       opt.gapCorrection = o.flag("gapCorrection");
+      {
+        const std::string& d = o.text("defectCorrection");  // the option table allows only these
+        opt.defectCorrection = d == "on"    ? fsi::coupling::ProjectionOptions::Defect::On
+                               : d == "off" ? fsi::coupling::ProjectionOptions::Defect::Off
+                                            : fsi::coupling::ProjectionOptions::Defect::Auto;
+      }
       opt.quadratureLevel =
           o.isWord("quadratureLevel") ? fsi::coupling::kAutoQuadrature : int(o.integer("quadratureLevel"));
       opt.tolerance = o.given("mapTolerance") ? o.real("mapTolerance")
@@ -222,7 +228,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         const auto& r = maps_.back()->report();
         Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
              << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass())
-             << " L2 projection (quadrature level " << r.quadratureLevel << "), largest gap " << r.maxGap
+             << " L2 projection (quadrature level " << r.quadratureLevel
+             << (r.defectCorrection ? ", defect correction" : "") << "), largest gap " << r.maxGap
              << " m, set up in " << r.setupSeconds << " s" << endl;
         if (!r.allMapped()) {
           FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "

@@ -183,7 +183,7 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
                     const std::string& variant, const std::string& quadratureLevel,
-                    const std::vector<std::string>& sets, bool gapCorrection) {
+                    const std::vector<std::string>& sets, bool gapCorrection, const std::string& defect) {
   // No run to stop cleanly here: Ctrl-C ends the program as usual (and one pressed during start-up does).
   std::signal(SIGINT, SIG_DFL);
   if (gStop.requested()) return 130;
@@ -214,6 +214,14 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
   const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterfaceOrScene(dst, sets);
   opt.tolerance = tolerance;
   opt.gapCorrection = gapCorrection;
+  if (defect == "auto")
+    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Auto;
+  else if (defect == "on")
+    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::On;
+  else if (defect == "off")
+    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Off;
+  else
+    throw fsi::InputError(fmt::format("--defect-correction {}: must be auto, on or off", defect));
   const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
   fmt::print("{}", r.summary());
   if (!jsonOut.empty()) {
@@ -312,6 +320,7 @@ int main(int argc, char** argv) {
   std::string mapLevel = "auto";
   std::vector<std::string> mapSets;
   bool mapNoGapCorrection = false;
+  std::string mapDefect = "auto";
   mapCheck
       ->add_option(
           "source", mapSrc,
@@ -330,6 +339,9 @@ int main(int argc, char** argv) {
                        "meshes' edge-length ratio) or 1..64");
   mapCheck->add_flag("--no-gap-correction", mapNoGapCorrection,
                      "project without carrying fields across the gap of curved meshes (docs/PROJECTION.md)");
+  mapCheck->add_option("--defect-correction", mapDefect,
+                       "auto (default: on when the target is 1.5x coarser than the source), on or off "
+                       "(docs/PROJECTION.md)");
   mapCheck->add_option("--set", mapSets,
                        "override a value of the scene side(s): key.path=value (repeatable)");
 
@@ -379,7 +391,7 @@ int main(int argc, char** argv) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))
         throw fsi::InputError(fmt::format("--tolerance {}: must be a finite distance >= 0", mapTolerance));
       return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
-                             mapVariant, mapLevel, mapSets, !mapNoGapCorrection);
+                             mapVariant, mapLevel, mapSets, !mapNoGapCorrection, mapDefect);
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
     if (*generate) return generateCommand(genScene, genOut, genSets);

@@ -541,6 +541,25 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
     report_.factorSeconds = secondsSince(t0);
   }
   scratch_.assign(std::size_t(3 * nt_), 0.0);
+
+  const bool coarserTarget = target.meanEdgeLength() >= kDefectRatio * source.meanEdgeLength();
+  if (options.defectCorrection == ProjectionOptions::Defect::On ||
+      (options.defectCorrection == ProjectionOptions::Defect::Auto && coarserTarget)) {
+    // P back onto the source: dual (sparse, exact for linear fields like H), never corrected itself.
+    ProjectionOptions back = options;
+    back.mass = MassMatrix::Dual;
+    back.quadratureLevel = kAutoQuadrature;
+    back.defectCorrection = ProjectionOptions::Defect::Off;
+    back_ = std::make_unique<L2Projection>(target, source, back);
+    // A source node P cannot reach would feed H a value pulled towards 0: only correct with P complete.
+    if (back_->report().allMapped() || options.defectCorrection == ProjectionOptions::Defect::On) {
+      report_.defectCorrection = true;
+      defectSource_.assign(std::size_t(3 * ns_), 0.0);
+      defectTarget_.assign(std::size_t(3 * nt_), 0.0);
+    } else {
+      back_.reset();
+    }
+  }
   report_.setupSeconds = secondsSince(tSetup);
 }
 
@@ -632,20 +651,43 @@ void checkComponents(int components) {
 }
 }  // namespace
 
-void L2Projection::apply(const double* us, double* ut, int components) const {
-  checkComponents(components);
+void L2Projection::applyBase(const double* us, double* ut, int components) const {
   if (components == 1)
     applyK<1>(us, ut);
   else
     applyK<3>(us, ut);
 }
 
-void L2Projection::applyTranspose(const double* ft, double* fs, int components) const {
-  checkComponents(components);
+void L2Projection::applyTransposeBase(const double* ft, double* fs, int components) const {
   if (components == 1)
     applyTransposeK<1>(ft, fs);
   else
     applyTransposeK<3>(ft, fs);
+}
+
+// The defect correction (ProjectionOptions::defectCorrection): H u carries the projection's averaging error
+// e = H u − u_t (~c h_t² ∇²u); P maps the target field back to the source nearly exactly (the source is
+// finer), so H P H u carries it twice, and 2 H u − H P H u = u_t + O(h_t⁴) + the source's own error. Both
+// H and P reproduce constants and linear fields, so H' does, and Hᵀ' = 2Hᵀ − Hᵀ Pᵀ Hᵀ conserves force
+// and moment exactly as Hᵀ does.
+void L2Projection::apply(const double* us, double* ut, int components) const {
+  checkComponents(components);
+  applyBase(us, ut, components);
+  if (!back_) return;
+  back_->apply(ut, defectSource_.data(), components);
+  applyBase(defectSource_.data(), defectTarget_.data(), components);
+  const std::size_t n = std::size_t(nt_) * std::size_t(components);
+  for (std::size_t i = 0; i < n; ++i) ut[i] = 2.0 * ut[i] - defectTarget_[i];
+}
+
+void L2Projection::applyTranspose(const double* ft, double* fs, int components) const {
+  checkComponents(components);
+  applyTransposeBase(ft, fs, components);
+  if (!back_) return;
+  back_->applyTranspose(fs, defectTarget_.data(), components);
+  applyTransposeBase(defectTarget_.data(), defectSource_.data(), components);
+  const std::size_t n = std::size_t(ns_) * std::size_t(components);
+  for (std::size_t i = 0; i < n; ++i) fs[i] = 2.0 * fs[i] - defectSource_[i];
 }
 
 void L2Projection::apply(const Eigen::VectorXd& us, Eigen::VectorXd& ut, int components) const {
@@ -667,6 +709,30 @@ void L2Projection::applyTranspose(const Eigen::VectorXd& ft, Eigen::VectorXd& fs
 }
 
 L2Projection::SparseRows L2Projection::operatorMatrix(double dropTolerance) const {
+  if (back_) {  // the corrected operator, column by column
+    std::vector<Eigen::Triplet<double, int>> entries;
+    std::vector<double> e(std::size_t(ns_), 0.0);
+    std::vector<double> col(std::size_t(nt_), 0.0);
+    std::vector<double> rowMax(std::size_t(nt_), 0.0);
+    for (int j = 0; j < ns_; ++j) {
+      e[std::size_t(j)] = 1.0;
+      apply(e.data(), col.data());
+      e[std::size_t(j)] = 0.0;
+      for (int i = 0; i < nt_; ++i)
+        if (col[std::size_t(i)] != 0.0) {
+          entries.emplace_back(i, j, col[std::size_t(i)]);
+          rowMax[std::size_t(i)] = std::max(rowMax[std::size_t(i)], std::abs(col[std::size_t(i)]));
+        }
+    }
+    entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                 [&](const auto& t) {
+                                   return std::abs(t.value()) < dropTolerance * rowMax[std::size_t(t.row())];
+                                 }),
+                  entries.end());
+    SparseRows h(nt_, ns_);
+    h.setFromTriplets(entries.begin(), entries.end());
+    return h;
+  }
   if (mass_ != MassMatrix::Consistent) {
     SparseRows h = lumpedInv_.asDiagonal() * c_;
     return h;

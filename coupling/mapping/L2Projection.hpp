@@ -14,6 +14,7 @@
 #include <Eigen/SparseCore>
 #include <array>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -75,7 +76,15 @@ struct ProjectionOptions {
   /// in x, y, z exactly also on curved surfaces that do not coincide, so rigid rotations reach the target
   /// undistorted and Hᵀ conserves the moment exactly. See docs/PROJECTION.md ("Gap correction").
   bool gapCorrection = true;
+  /// Defect correction H' = 2H − H P H, P the (dual) projection back from the target to the source: removes
+  /// the projection's own averaging over the target's hat functions (~h_t²∇²f at the nodes), which a target
+  /// much coarser than the source would otherwise add to the field; keeps constants and linear fields
+  /// exact (so force and moment), Hᵀ' = 2Hᵀ − Hᵀ Pᵀ Hᵀ stays smooth. Auto: on when the target's mean edge is
+  /// at least kDefectRatio × the source's and P maps every source node. See docs/PROJECTION.md.
+  enum class Defect { Off, On, Auto } defectCorrection = Defect::Auto;
 };
+
+inline constexpr double kDefectRatio = 1.5;
 
 inline constexpr int kAutoQuadrature = 0;
 /// Largest level autoQuadratureLevel chooses (and map-check/the adapter accept).
@@ -95,8 +104,9 @@ struct UnmappedPoint {
 struct ProjectionReport {
   std::string source, target;  ///< mesh names
   int sourceNodes = 0, targetNodes = 0, targetTriangles = 0;
-  int quadratureLevel = 1;     ///< the level used (chosen when the options said kAutoQuadrature)
-  bool gapCorrection = false;  ///< the source field was transported across the gap
+  int quadratureLevel = 1;        ///< the level used (chosen when the options said kAutoQuadrature)
+  bool gapCorrection = false;     ///< the source field was transported across the gap
+  bool defectCorrection = false;  ///< H' = 2H − H P H is applied (ProjectionOptions::defectCorrection)
   /// Source triangles whose neighbourhood is flat (their normal derivative is unknown and taken as 0; the
   /// correction is then only tangential): exact linear reproduction needs gaps only where it is curved.
   long flatGradientTriangles = 0;
@@ -147,10 +157,14 @@ class L2Projection {
   /// H itself as a sparse matrix. Lumped, Dual: diag⁻¹ C, as sparse as C. Consistent: M_t⁻¹ C is dense in
   /// principle (the inverse of a mass matrix has no zero entries), so it is solved column by column and
   /// entries below dropTolerance × (largest entry in its row) are dropped: for inspection and small meshes;
-  /// apply() never forms it.
+  /// apply() never forms it. With the defect correction, the corrected operator, by one apply per source
+  /// node (and C, targetMass() are those of the uncorrected H).
   SparseRows operatorMatrix(double dropTolerance = 0.0) const;
 
  private:
+  // The uncorrected H and Hᵀ.
+  void applyBase(const double* us, double* ut, int components) const;
+  void applyTransposeBase(const double* ft, double* fs, int components) const;
   template <int K>
   void applyK(const double* us, double* ut) const;
   template <int K>
@@ -170,6 +184,8 @@ class L2Projection {
   std::vector<double> lx_, dinv_;
   std::vector<unsigned char> nodeMapped_;
   mutable std::vector<double> scratch_;
+  std::unique_ptr<L2Projection> back_;  // P (target → source) of the defect correction, or null
+  mutable std::vector<double> defectSource_, defectTarget_;
 };
 
 }  // namespace fsi::coupling

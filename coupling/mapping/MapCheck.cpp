@@ -199,6 +199,7 @@ nlohmann::json reportJson(const ProjectionReport& r) {
           {"target_triangles", r.targetTriangles},
           {"quadrature_level", r.quadratureLevel},
           {"gap_correction", r.gapCorrection},
+          {"defect_correction", r.defectCorrection},
           {"quadrature_points", r.quadraturePoints},
           {"unmapped_quadrature_points", r.unmappedQuadraturePoints},
           {"first_unmapped_quadrature_points", points},
@@ -264,7 +265,8 @@ MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const
   r.tolerance =
       options.tolerance >= 0.0 ? options.tolerance : 0.25 * std::max(a.meanEdgeLength(), b.meanEdgeLength());
   const TestFields fields = makeFields(a, b);
-  const ProjectionOptions po{options.mass, r.tolerance, options.quadratureLevel, options.gapCorrection};
+  const ProjectionOptions po{options.mass, r.tolerance, options.quadratureLevel, options.gapCorrection,
+                             options.defectCorrection};
   r.directions[0] = check(a, b, fields, po, options);
   r.directions[1] = check(b, a, fields, po, options);
   checkFinite(r);
@@ -317,6 +319,13 @@ std::string MapCheckResult::summary() const {
   both(
       "quadrature level (target triangle split L x L)",
       [](const DirectionCheck& d) { return d.report.quadratureLevel; }, "{}");
+  both(
+      "gap / defect correction",
+      [](const DirectionCheck& d) {
+        return fmt::format("{} / {}", d.report.gapCorrection ? "yes" : "no",
+                           d.report.defectCorrection ? "yes" : "no");
+      },
+      "{}");
   both(
       "target quadrature points", [](const DirectionCheck& d) { return d.report.quadraturePoints; }, "{}");
   both(

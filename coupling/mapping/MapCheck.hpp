@@ -19,6 +19,7 @@ struct MapCheckOptions {
   MassMatrix mass = MassMatrix::Auto;
   int quadratureLevel = kAutoQuadrature;  ///< or a level ≥ 1
   bool gapCorrection = true;
+  ProjectionOptions::Defect defectCorrection = ProjectionOptions::Defect::Auto;
   int applyRepeats = 20;  ///< applies timed per direction (the mean is reported)
   unsigned seed = 12345;  ///< of the random force field
 };

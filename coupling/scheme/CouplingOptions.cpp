@@ -450,6 +450,10 @@ OptionSchema couplingOptionSchema() {
       "sub-triangles per fluid face edge for the projection's quadrature; auto: from the meshes' edge ratio");
   quadrature.choices = {"auto"};
   coupled.push_back(quadrature);
+  coupled.push_back(
+      wordSpec("defectCorrection", OptionType::Choice, "auto", {"auto", "on", "off"},
+               "projection: remove its averaging error where the fluid mesh is 1.5x coarser than "
+               "the structure's (auto) or always/never"));
   coupled.push_back(wordSpec("gapCorrection", OptionType::Switch, "yes", {},
                              "projection: carry fields across the gap between curved non-matching meshes "
                              "(exact linear fields and moment; docs/PROJECTION.md)"));

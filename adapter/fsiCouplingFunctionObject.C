@@ -228,9 +228,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         const auto& r = maps_.back()->report();
         Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
              << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass())
-             << " L2 projection (quadrature level " << r.quadratureLevel
-             << (r.defectCorrection ? ", defect correction" : "") << "), largest gap " << r.maxGap
-             << " m, set up in " << r.setupSeconds << " s" << endl;
+             << " L2 projection (level " << r.quadratureLevel << (r.defectCorrection ? "+defect" : "")
+             << "), largest gap " << r.maxGap << " m, set up in " << r.setupSeconds << " s" << endl;
         if (!r.allMapped()) {
           FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
                                        << ip->name() << " are farther than mapTolerance " << opt.tolerance

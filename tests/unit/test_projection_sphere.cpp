@@ -19,6 +19,7 @@
 
 #include "coupling/interface/SurfaceSearch.hpp"
 #include "coupling/mapping/L2Projection.hpp"
+#include "coupling/mapping/MapCheck.hpp"
 
 namespace fsi::coupling {
 namespace {
@@ -356,6 +357,46 @@ TEST(ProjectionSphere, AutoVariantBySize) {
   EXPECT_EQ(resolveMass(MassMatrix::Lumped, 1 << 30), MassMatrix::Lumped);
   const auto& [fine, coarse] = spheres();
   EXPECT_EQ(L2Projection(fine, coarse, options(MassMatrix::Auto)).mass(), MassMatrix::Consistent);
+}
+
+TEST(ProjectionSphere, MapCheckReportsItAll) {
+  // `fsi map-check` on the two spheres: the level it chose, the corrections, the comparison with nearest
+  // point and the smoothness of the force transfer, both ways.
+  const auto& [fine, coarse] = spheres();
+  MapCheckOptions opt;
+  opt.applyRepeats = 1;
+  const MapCheckResult r = runMapCheck(fine, coarse, opt);
+  ASSERT_TRUE(r.allMapped());
+  const DirectionCheck& down = r.directions[0];  // fine -> coarse
+  const DirectionCheck& up = r.directions[1];    // coarse -> fine
+  EXPECT_EQ(down.report.quadratureLevel, 6);
+  EXPECT_EQ(up.report.quadratureLevel, 1);
+  EXPECT_TRUE(down.report.defectCorrection);
+  EXPECT_FALSE(up.report.defectCorrection);
+  EXPECT_EQ(down.mass, MassMatrix::Consistent);  // auto, 602 target nodes
+  for (const DirectionCheck* d : {&down, &up}) {
+    EXPECT_TRUE(d->report.gapCorrection);
+    EXPECT_LT(d->linear.max, 1e-12);
+    EXPECT_GT(d->linearNearest.max, 1e-6);
+    EXPECT_LT(d->forceError, 1e-12);
+    EXPECT_LT(d->momentError, 1e-12);
+    EXPECT_EQ(d->zeroForceNodes, 0);
+  }
+  EXPECT_LE(down.quadratic.max, down.quadraticNearest.max);
+  EXPECT_LE(down.quadratic.rms, down.quadraticNearest.rms);
+  EXPECT_LT(down.pressureRms, 0.05);
+  const std::string s = r.summary();
+  for (const char* row : {"quadrature level", "nearest-point interpolation", "uniform pressure by H^T",
+                          "source nodes with zero force", "gap / defect correction"})
+    EXPECT_NE(s.find(row), std::string::npos) << row;
+  const auto j = r.toJson().at("directions").at(0);
+  EXPECT_EQ(j.at("quadrature_level").get<int>(), 6);
+  EXPECT_EQ(j.at("uniform_pressure_transfer").at("zero_force_nodes").get<long>(), 0);
+  std::printf(
+      "  map-check fine -> coarse: quadratic max %.3e (nearest point %.3e), pressure RMS %.2f %%; "
+      "coarse -> fine: quadratic max %.3e (nearest point %.3e), pressure RMS %.2f %%\n",
+      down.quadratic.max, down.quadraticNearest.max, 100 * down.pressureRms, up.quadratic.max,
+      up.quadraticNearest.max, 100 * up.pressureRms);
 }
 
 }  // namespace

@@ -332,10 +332,16 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
   const double sourceEdge = source.meanEdgeLength();
   GapGradient gradient(source, sf, 2.0 * std::max(sourceEdge, target.meanEdgeLength()));
   report_.gapCorrection = options.gapCorrection;
+  // Coinciding surfaces: a gap at round-off would only add entries of round-off size to C.
+  const auto negligible = [&](const std::array<double, 3>& d) {
+    return std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]) <= 1e-12 * sourceEdge;
+  };
   if (options.gapCorrection) {
+    // Stencils only where a point has a gap (none on coinciding flat surfaces: no cost there).
     std::vector<unsigned char> used(std::size_t(sf.numTriangles()), 0);
-    for (int t : srcTri)
-      if (t >= 0) used[std::size_t(t)] = 1;
+    for (long q = 0; q < nq; ++q)
+      if (srcTri[std::size_t(q)] >= 0 && !negligible(gap[std::size_t(q)]))
+        used[std::size_t(srcTri[std::size_t(q)])] = 1;
     gradient.build(used);
     report_.flatGradientTriangles = gradient.flatTriangles;
   }
@@ -345,8 +351,7 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
     sf.forEachWeight(t, srcBary[std::size_t(q)], [&](int k, double phi) { acc.add(i, k, w * phi); });
     if (!options.gapCorrection) return;
     const std::array<double, 3>& d = gap[std::size_t(q)];
-    // Coinciding surfaces: a gap at round-off would only add entries of round-off size to C.
-    if (std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]) <= 1e-12 * sourceEdge) return;
+    if (negligible(d)) return;
     for (const GapGradient::Entry* e = gradient.begin(t); e != gradient.end(t); ++e)
       acc.add(i, e->node, w * (d[0] * e->g[0] + d[1] * e->g[1] + d[2] * e->g[2]));
   };

@@ -261,8 +261,16 @@ class GapGradient {
     }
   }
 
+  // Bounds on a patch: the stencils are stored for every source triangle hit (32 bytes per patch node), so a
+  // target many times coarser than the source must not make them grow as the ratio squared; beyond these
+  // the fit is noisier (Hᵀ less smooth), never inexact.
   static constexpr int kMaxRings = 16;
-  static constexpr std::size_t kMaxPatch = 2000;
+  static constexpr std::size_t kMaxPatch = 256;
+
+ public:
+  long entries() const { return long(entries_.size()); }
+
+ private:
   const InterfaceMesh& mesh_;
   const FanTriangulation& fan_;
   double minRadius_;
@@ -344,6 +352,7 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
         used[std::size_t(srcTri[std::size_t(q)])] = 1;
     gradient.build(used);
     report_.flatGradientTriangles = gradient.flatTriangles;
+    report_.gapStencilEntries = gradient.entries();
   }
   // Adds w × (the source functions at quadrature point q, moved across the gap) to row i of C.
   auto addSource = [&](RowAccumulator& acc, int i, long q, double w) {

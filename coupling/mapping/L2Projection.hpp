@@ -110,6 +110,8 @@ struct ProjectionReport {
   /// Source triangles whose neighbourhood is flat (their normal derivative is unknown and taken as 0; the
   /// correction is then only tangential): exact linear reproduction needs gaps only where it is curved.
   long flatGradientTriangles = 0;
+  long gapStencilEntries =
+      0;  ///< (node, gradient weight) pairs of the gap correction (setup memory, 32 B each)
   long quadraturePoints = 0;
   long unmappedQuadraturePoints = 0;
   std::vector<UnmappedPoint> firstUnmappedPoints;  ///< up to kListed

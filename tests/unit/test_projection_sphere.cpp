@@ -320,8 +320,10 @@ TEST(ProjectionSphere, CoarseToFineForcesSmoothUnderAutomaticLevel) {
     const L2Projection h(fine, coarse, options(mass));
     EXPECT_EQ(h.report().quadratureLevel, level);
     const auto [rms, zeros] = pressureTransfer(h, fine);
-    std::printf("  %s, auto level %d: uniform pressure RMS deviation %.2f %%, %ld zero-force nodes\n",
-                toString(mass), level, 100 * rms, zeros);
+    std::printf(
+        "  %s, auto level %d: uniform pressure RMS deviation %.2f %%, %ld zero-force nodes (gap "
+        "stencils: %ld entries)\n",
+        toString(mass), level, 100 * rms, zeros, h.report().gapStencilEntries);
     EXPECT_LT(rms, 0.05);
     EXPECT_EQ(zeros, 0);
     // The adapter's former fixed level 1 samples the fine mesh too sparsely: far from smooth.

@@ -220,8 +220,13 @@ TEST(CouplingOptions, ValuesDefaultsAndLists) {
   const OptionValues d = schema.validate(minimal());
   EXPECT_EQ(d.text("scheme"), "staggered");
   EXPECT_EQ(d.integer("extrapolation"), 1);
-  EXPECT_EQ(d.text("projection"), "auto");
-  EXPECT_TRUE(d.isWord("quadratureLevel"));  // auto
+  // the projection of the validated coupled runs (docs/PROJECTION.md, "Defaults in a coupled run")
+  EXPECT_EQ(d.text("projection"), "consistent");
+  EXPECT_FALSE(d.isWord("quadratureLevel"));
+  EXPECT_EQ(d.integer("quadratureLevel"), 1);
+  EXPECT_FALSE(d.flag("gapCorrection"));
+  EXPECT_EQ(d.text("defectCorrection"), "off");
+  EXPECT_TRUE(schema.validate(minimal({{"quadratureLevel", {"auto"}}})).isWord("quadratureLevel"));
   EXPECT_FALSE(schema.validate(minimal({{"quadratureLevel", {"3"}}})).isWord("quadratureLevel"));
   EXPECT_EQ(schema.validate(minimal({{"quadratureLevel", {"3"}}})).integer("quadratureLevel"), 3);
   EXPECT_FALSE(d.has("omega"));  // no effect without the implicit scheme

@@ -211,6 +211,15 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       // Projection structure -> each fluid patch, on the reference geometry.
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));
+      opt.gapCorrection = o.flag("gapCorrection");
+      {
+        const std::string& d = o.text("defectCorrection");  // the option table allows only these
+        opt.defectCorrection = d == "on"    ? fsi::coupling::ProjectionOptions::Defect::On
+                               : d == "off" ? fsi::coupling::ProjectionOptions::Defect::Off
+                                            : fsi::coupling::ProjectionOptions::Defect::Auto;
+      }
+      opt.quadratureLevel =
+          o.isWord("quadratureLevel") ? fsi::coupling::kAutoQuadrature : int(o.integer("quadratureLevel"));
       opt.tolerance = o.given("mapTolerance") ? o.real("mapTolerance")
                                               : 0.25 * structure_->interfaceMesh().meanEdgeLength();
       for (const auto& ip : interfaces_) {
@@ -218,8 +227,9 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
             new fsi::coupling::L2Projection(structure_->interfaceMesh(), ip->referenceMesh(), opt));
         const auto& r = maps_.back()->report();
         Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
-             << " structure nodes, " << fsi::coupling::toString(opt.mass) << " L2 projection, largest gap "
-             << r.maxGap << " m, set up in " << r.setupSeconds << " s" << endl;
+             << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass())
+             << " L2 projection (level " << r.quadratureLevel << (r.defectCorrection ? "+defect" : "")
+             << "), largest gap " << r.maxGap << " m, set up in " << r.setupSeconds << " s" << endl;
         if (!r.allMapped()) {
           FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
                                        << ip->name() << " are farther than mapTolerance " << opt.tolerance

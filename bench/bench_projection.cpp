@@ -5,6 +5,7 @@
 // argument is the number of target nodes. items_per_second = target nodes per second (one field transfer).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -130,6 +131,97 @@ void BM_ProjectionTransposeDualVector(benchmark::State& s) {
   apply(s, MassMatrix::Dual, 3, true);
 }
 
+// MassMatrix::Auto: consistent up to kAutoConsistentMaxNodes target nodes, dual above.
+void BM_ProjectionApplyAutoScalar(benchmark::State& s) {
+  apply(s, MassMatrix::Auto, 1, false);
+}
+void BM_ProjectionApplyAutoVector(benchmark::State& s) {
+  apply(s, MassMatrix::Auto, 3, false);
+}
+void BM_ProjectionTransposeAutoVector(benchmark::State& s) {
+  apply(s, MassMatrix::Auto, 3, true);
+}
+
+// A curved non-matching interface, the case of issue 16: a unit sphere, cubed with n × n cells per cube
+// face (6n² + 2 vertices), fine triangles (n = 32, 6146 nodes) projected onto coarse quads (n = 10, 602
+// nodes, rotated), consistent, automatic quadrature level. Argument: 0 = plain projection (no gap, no
+// defect correction), 1 = gap correction, 2 = gap and defect correction (the default here): the cost of
+// the corrections (setup, nnz of C, apply).
+InterfaceMesh cubedSphere(int n, bool triangles, double angle) {
+  InterfaceMesh m;
+  m.name = "sphere";
+  const double pi = std::acos(-1.0), c = std::cos(angle), s = std::sin(angle);
+  std::map<std::array<int, 3>, int> ids;
+  auto vertex = [&](const std::array<int, 3>& l) {
+    auto it = ids.find(l);
+    if (it != ids.end()) return it->second;
+    std::array<double, 3> p;
+    for (int k = 0; k < 3; ++k) p[std::size_t(k)] = std::tan(pi / 4 * (2.0 * l[std::size_t(k)] / n - 1.0));
+    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    m.points.push_back({(c * p[0] - s * p[1]) / r, (s * p[0] + c * p[1]) / r, p[2] / r});  // about z
+    ids.emplace(l, m.numPoints() - 1);
+    return m.numPoints() - 1;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          std::array<int, 4> q;
+          const int di[4] = {0, 1, 1, 0}, dj[4] = {0, 0, 1, 1};
+          for (int k = 0; k < 4; ++k) {
+            std::array<int, 3> l{};
+            l[std::size_t(axis)] = side * n;
+            l[std::size_t((axis + 1) % 3)] = i + di[k];
+            l[std::size_t((axis + 2) % 3)] = j + dj[k];
+            q[std::size_t(k)] = vertex(l);
+          }
+          if (triangles) {
+            m.addFace({q[0], q[1], q[2]});
+            m.addFace({q[0], q[2], q[3]});
+          } else {
+            m.addFace({q[0], q[1], q[2], q[3]});
+          }
+        }
+  return m;
+}
+
+const InterfaceMesh& fineSphere() {
+  static const InterfaceMesh m = cubedSphere(32, true, 0.0);
+  return m;
+}
+const InterfaceMesh& coarseSphere() {
+  static const InterfaceMesh m = cubedSphere(10, false, 0.37);
+  return m;
+}
+
+ProjectionOptions sphereOptions(long setup) {
+  return {MassMatrix::Consistent, HUGE_VAL, kAutoQuadrature, setup >= 1,
+          setup >= 2 ? ProjectionOptions::Defect::On : ProjectionOptions::Defect::Off};
+}
+
+void BM_ProjectionSphereSetup(benchmark::State& state) {
+  const ProjectionOptions o = sphereOptions(state.range(0));
+  long nnz = 0;
+  for (auto _ : state) {
+    const L2Projection h(fineSphere(), coarseSphere(), o);
+    nnz = h.coupling().nonZeros();
+    benchmark::DoNotOptimize(&h);
+  }
+  state.counters["nnz_C"] = double(nnz);
+}
+void BM_ProjectionSphereApplyScalar(benchmark::State& state) {
+  static std::map<long, std::unique_ptr<L2Projection>> cache;
+  std::unique_ptr<L2Projection>& h = cache[state.range(0)];
+  if (!h) h = std::make_unique<L2Projection>(fineSphere(), coarseSphere(), sphereOptions(state.range(0)));
+  std::vector<double> us(std::size_t(h->sourceSize()), 1.0), ut(std::size_t(h->targetSize()));
+  for (auto _ : state) {
+    h->apply(us.data(), ut.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["nnz_C"] = double(h->coupling().nonZeros());
+  state.SetItemsProcessed(long(state.iterations()) * h->targetSize());
+}
+
 // 10^3 .. max target nodes; setup is expected to grow as N log N, apply as N.
 void setupSizes(benchmark::internal::Benchmark* b, long max) {
   b->RangeMultiplier(10)->Range(1000, max)->Unit(benchmark::kMillisecond)->Complexity(benchmark::oNLogN);
@@ -153,3 +245,8 @@ BENCHMARK(BM_ProjectionTransposeLumpedVector)->Apply([](auto* b) { applySizes(b,
 BENCHMARK(BM_ProjectionApplyDualScalar)->Apply([](auto* b) { applySizes(b, 1000000); });
 BENCHMARK(BM_ProjectionApplyDualVector)->Apply([](auto* b) { applySizes(b, 1000000); });
 BENCHMARK(BM_ProjectionTransposeDualVector)->Apply([](auto* b) { applySizes(b, 1000000); });
+BENCHMARK(BM_ProjectionApplyAutoScalar)->Apply([](auto* b) { applySizes(b, 1000000); });
+BENCHMARK(BM_ProjectionApplyAutoVector)->Apply([](auto* b) { applySizes(b, 1000000); });
+BENCHMARK(BM_ProjectionTransposeAutoVector)->Apply([](auto* b) { applySizes(b, 1000000); });
+BENCHMARK(BM_ProjectionSphereSetup)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ProjectionSphereApplyScalar)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);

@@ -17,6 +17,7 @@
 #include <cerrno>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -181,15 +182,26 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // Exit code 0 when every point mapped, 1 when some did not (the summary says which); bad input throws.
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
-                    const std::string& variant, int quadratureLevel, const std::vector<std::string>& sets) {
+                    const std::string& variant, const std::string& quadratureLevel,
+                    const std::vector<std::string>& sets, bool gapCorrection, const std::string& defect) {
   // No run to stop cleanly here: Ctrl-C ends the program as usual (and one pressed during start-up does).
   std::signal(SIGINT, SIG_DFL);
   if (gStop.requested()) return 130;
   if (!sets.empty() && !fsi::coupling::isSceneFile(src) && !fsi::coupling::isSceneFile(dst))
     throw fsi::InputError("--set applies to a structure scene (SCENE.yaml), but neither side is one");
-  if (quadratureLevel < 1)
-    throw fsi::InputError(fmt::format("--quadrature-level {}: must be >= 1", quadratureLevel));
   fsi::coupling::MapCheckOptions opt;
+  if (quadratureLevel == "auto") {
+    opt.quadratureLevel = fsi::coupling::kAutoQuadrature;
+  } else {
+    char* end = nullptr;
+    errno = 0;
+    const long level = std::strtol(quadratureLevel.c_str(), &end, 10);
+    if (quadratureLevel.empty() || *end != '\0' || errno == ERANGE || level < 1 ||
+        level > fsi::coupling::kMaxQuadratureLevel)
+      throw fsi::InputError(fmt::format("--quadrature-level {}: must be auto or an integer from 1 to {}",
+                                        quadratureLevel, fsi::coupling::kMaxQuadratureLevel));
+    opt.quadratureLevel = int(level);
+  }
   if (!fsi::coupling::massMatrixFromName(variant, opt.mass))
     throw fsi::InputError(fmt::format("--variant {}: must be one of {}", variant,
                                       fmt::join(fsi::coupling::massMatrixNames(), ", ")));
@@ -201,7 +213,15 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
   const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterfaceOrScene(src, sets);
   const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterfaceOrScene(dst, sets);
   opt.tolerance = tolerance;
-  opt.quadratureLevel = quadratureLevel;
+  opt.gapCorrection = gapCorrection;
+  if (defect == "auto")
+    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Auto;
+  else if (defect == "on")
+    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::On;
+  else if (defect == "off")
+    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Off;
+  else
+    throw fsi::InputError(fmt::format("--defect-correction {}: must be auto, on or off", defect));
   const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
   fmt::print("{}", r.summary());
   if (!jsonOut.empty()) {
@@ -296,9 +316,11 @@ int main(int argc, char** argv) {
   std::string mapSrc, mapDst;
   double mapTolerance = -1.0;
   fs::path mapJson;
-  std::string mapVariant = "consistent";
-  int mapLevel = 1;
+  std::string mapVariant = "auto";
+  std::string mapLevel = "auto";
   std::vector<std::string> mapSets;
+  bool mapNoGapCorrection = false;
+  std::string mapDefect = "auto";
   mapCheck
       ->add_option(
           "source", mapSrc,
@@ -309,9 +331,17 @@ int main(int argc, char** argv) {
       "--tolerance,-t", mapTolerance,
       "absolute distance beyond which a point is unmapped (default 0.25 x the larger mean edge length)");
   mapCheck->add_option("--json", mapJson, "also write the results to this JSON file");
-  mapCheck->add_option("--variant", mapVariant, "projection: consistent (default), lumped or dual");
+  mapCheck->add_option("--variant", mapVariant,
+                       "projection: auto (default: consistent up to 5000 target nodes, dual above), "
+                       "consistent, lumped or dual");
   mapCheck->add_option("--quadrature-level", mapLevel,
-                       "split each target triangle into level^2 for quadrature");
+                       "split each target triangle into level^2 for quadrature: auto (default, from the "
+                       "meshes' edge-length ratio) or 1..64");
+  mapCheck->add_flag("--no-gap-correction", mapNoGapCorrection,
+                     "project without carrying fields across the gap of curved meshes (docs/PROJECTION.md)");
+  mapCheck->add_option("--defect-correction", mapDefect,
+                       "auto (default: on when the target is 1.5x coarser than the source), on or off "
+                       "(docs/PROJECTION.md)");
   mapCheck->add_option("--set", mapSets,
                        "override a value of the scene side(s): key.path=value (repeatable)");
 
@@ -361,7 +391,7 @@ int main(int argc, char** argv) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))
         throw fsi::InputError(fmt::format("--tolerance {}: must be a finite distance >= 0", mapTolerance));
       return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
-                             mapVariant, mapLevel, mapSets);
+                             mapVariant, mapLevel, mapSets, !mapNoGapCorrection, mapDefect);
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
     if (*generate) return generateCommand(genScene, genOut, genSets);

@@ -42,6 +42,11 @@ std::vector<double> conservativeTrianglePressure(const InterfaceMesh& tri, const
   // of the file's mass matrix to), and Hᵀ applied to the lumped loads diag(M_f 1) p_f is Cᵀ p_f.
   opt.mass = MassMatrix::Lumped;
   opt.tolerance = tolerance;
+  // Neither correction: both would make H something other than diag⁻¹ C (the defect correction) or give
+  // C column sums other than the area each node receives data on (the gap correction's transport weights
+  // sum to zero over a row, not over a column), and this mapping is defined by Cᵀ p_f and Cᵀ 1.
+  opt.gapCorrection = false;
+  opt.defectCorrection = ProjectionOptions::Defect::Off;
   // C is integrated over the file's surface, and the triangles' shape functions bend at their edges inside
   // the file's faces: the quadrature cells are made about a quarter of a triangle edge (level 1 for a file
   // four times finer than the triangles, the usual CFD surface), so that every node receives its share.

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
@@ -126,6 +128,156 @@ struct RowAccumulator {
   std::vector<int> mark, touched;
 };
 
+// First-order transport of the source field across the gap between the two discrete surfaces. Where they
+// do not coincide (a curved surface meshed twice: each mesh's chords lie inside the surface by up to
+// h²/8R), a target quadrature point x and its closest source point P(x) are a gap d = x − P(x) apart, and a
+// field varying along the normal differs there by d·∇f: the source value at P(x) is the wrong value for x.
+// For a field linear in x, y, z the L2 projection then maps even the coordinates with an O(h²) error (so a
+// rigid rotation is distorted and Hᵀ does not conserve the moment), and a coarse target is biased by its
+// own chord gap h_t²/8R, ~(h_t/h_s)² times the error of nearest-point interpolation from a finer source.
+// The fix evaluates f(P(x)) + d·∇f instead, with ∇f the gradient of the least-squares fit
+// a + b·(y − c) of the source values over the nodes of the faces around the source triangle's nodes:
+// ∇f = Σ_j g_j f_j with Σ_j g_j = 0 (constants, so row sums and the total force are unchanged) and
+// Σ_j g_j x_jᵀ = I (exact for linear fields). The surface's own curvature is what makes the normal
+// derivative observable; on a flat neighbourhood it is not, and only the tangential part is used (the gap
+// of two coinciding flat surfaces is zero anyway).
+class GapGradient {
+ public:
+  struct Entry {
+    int node;
+    std::array<double, 3> g;
+  };
+
+  GapGradient(const InterfaceMesh& mesh, const FanTriangulation& fan, double minRadius)
+      : mesh_(mesh),
+        fan_(fan),
+        minRadius_(minRadius),
+        start_(std::size_t(fan.numTriangles()) + 1, -1),
+        mark_(mesh.points.size(), -1) {
+    const int np = mesh.numPoints();
+    nodeFaceStart_.assign(std::size_t(np) + 1, 0);
+    for (int n : mesh.faceNodes) ++nodeFaceStart_[std::size_t(n) + 1];
+    for (int i = 0; i < np; ++i) nodeFaceStart_[std::size_t(i) + 1] += nodeFaceStart_[std::size_t(i)];
+    nodeFaces_.resize(mesh.faceNodes.size());
+    std::vector<int> fill(nodeFaceStart_.begin(), nodeFaceStart_.end() - 1);
+    for (int f = 0; f < mesh.numFaces(); ++f)
+      for (int k = 0; k < mesh.faceSize(f); ++k)
+        nodeFaces_[std::size_t(fill[std::size_t(mesh.face(f)[k])]++)] = f;
+  }
+
+  // Builds the stencils of the triangles flagged in `used`, in triangle order.
+  void build(const std::vector<unsigned char>& used) {
+    for (int t = 0; t < fan_.numTriangles(); ++t) {
+      start_[std::size_t(t)] = int(entries_.size());
+      if (used[std::size_t(t)]) buildOne(t);
+    }
+    start_.back() = int(entries_.size());
+  }
+  const Entry* begin(int t) const { return entries_.data() + start_[std::size_t(t)]; }
+  const Entry* end(int t) const { return entries_.data() + start_[std::size_t(t) + 1]; }
+  long flatTriangles = 0;
+
+ private:
+  void buildOne(int t) {
+    // The triangle's nodes (a polygon centre stands for its face's nodes), then every node of their faces.
+    patch_.clear();
+    auto addNode = [&](int n) {
+      if (mark_[std::size_t(n)] != t) {
+        mark_[std::size_t(n)] = t;
+        patch_.push_back(n);
+      }
+    };
+    std::vector<int> own;
+    for (int c : fan_.triangles[std::size_t(t)]) {
+      if (c < fan_.numPoints) {
+        own.push_back(c);
+      } else {
+        const int f = c - fan_.numPoints;
+        for (int k = 0; k < mesh_.faceSize(f); ++k) own.push_back(mesh_.face(f)[k]);
+      }
+    }
+    for (int n : own) addNode(n);
+    const auto& c = fan_.triangles[std::size_t(t)];
+    const Eigen::Vector3d p0(fan_.corners[std::size_t(c[0])].data()),
+        p1(fan_.corners[std::size_t(c[1])].data()), p2(fan_.corners[std::size_t(c[2])].data());
+    const Eigen::Vector3d centre = (p0 + p1 + p2) / 3.0;
+    // Rings of faces around the triangle until the patch reaches minRadius_ (at least one ring).
+    std::size_t done = 0;
+    for (int ring = 0; ring < kMaxRings && patch_.size() < kMaxPatch; ++ring) {
+      const std::size_t count = patch_.size();
+      for (std::size_t a = done; a < count; ++a) {
+        const int n = patch_[a];
+        for (int p = nodeFaceStart_[std::size_t(n)]; p < nodeFaceStart_[std::size_t(n) + 1]; ++p) {
+          const int f = nodeFaces_[std::size_t(p)];
+          for (int k = 0; k < mesh_.faceSize(f); ++k) addNode(mesh_.face(f)[k]);
+        }
+      }
+      done = count;
+      double reach = 0.0;
+      for (std::size_t a = count; a < patch_.size(); ++a)
+        reach =
+            std::max(reach, (Eigen::Vector3d(mesh_.points[std::size_t(patch_[a])].data()) - centre).norm());
+      if (patch_.size() == count || reach >= minRadius_) break;
+    }
+    // Local frame: the triangle's tangents and normal, centred on the patch, scaled by its radius, so that
+    // the normal equations are well scaled and the flatness test is relative.
+    Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+    if (!(n.norm() > 0.0) || (p1 - p0).norm() == 0.0) return;  // degenerate triangle: no correction
+    n.normalize();
+    const Eigen::Vector3d t1 = (p1 - p0).normalized(), t2 = n.cross(t1);
+    double radius = 0.0;
+    for (int j : patch_)
+      radius = std::max(radius, (Eigen::Vector3d(mesh_.points[std::size_t(j)].data()) - centre).norm());
+    if (!(radius > 0.0)) return;
+    Eigen::Matrix<double, 4, Eigen::Dynamic> r(4, long(patch_.size()));
+    Eigen::VectorXd w(long(patch_.size()));
+    for (std::size_t j = 0; j < patch_.size(); ++j) {
+      const Eigen::Vector3d y =
+          (Eigen::Vector3d(mesh_.points[std::size_t(patch_[j])].data()) - centre) / radius;
+      r.col(long(j)) << 1.0, y.dot(t1), y.dot(t2), y.dot(n);
+      // Weights falling smoothly to ~0 at the patch's edge: neighbouring triangles' fits then differ
+      // little, so Hᵀ stays smooth (hard-edged patches left 16-80 % RMS noise in a uniform pressure).
+      const double q = 1.0 - y.squaredNorm() / 1.1025;
+      w(long(j)) = q * q;
+    }
+    const Eigen::Matrix4d a = r * w.asDiagonal() * r.transpose();
+    const Eigen::Matrix3d a3 = a.topLeftCorner<3, 3>();  // weighted
+    const Eigen::LLT<Eigen::Matrix3d> llt3(a3);
+    if (llt3.info() != Eigen::Success) return;
+    // Normal spread left after fitting the tangential plane (the Schur complement of the normal
+    // coordinate): zero on a flat patch, ~(radius / 2R)² × nodes on a sphere of radius R.
+    const double schur = a(3, 3) - a.block<1, 3>(3, 0) * llt3.solve(a.block<3, 1>(0, 3));
+    Eigen::Matrix<double, 3, Eigen::Dynamic> g;  // gradient weights in the frame (t1, t2, n), per radius
+    if (schur > 1e-12 * double(patch_.size())) {
+      g = a.inverse().bottomRows<3>() * r * w.asDiagonal();
+    } else {
+      ++flatTriangles;
+      g.setZero(3, long(patch_.size()));
+      g.topRows<2>() = llt3.solve(r.topRows<3>() * w.asDiagonal()).bottomRows<2>();
+    }
+    for (std::size_t j = 0; j < patch_.size(); ++j) {
+      const Eigen::Vector3d gj = (g(0, long(j)) * t1 + g(1, long(j)) * t2 + g(2, long(j)) * n) / radius;
+      entries_.push_back({patch_[j], {gj.x(), gj.y(), gj.z()}});
+    }
+  }
+
+  // Bounds on a patch: the stencils are stored for every source triangle hit (32 bytes per patch node), so a
+  // target many times coarser than the source must not make them grow as the ratio squared; beyond these
+  // the fit is noisier (Hᵀ less smooth), never inexact.
+  static constexpr int kMaxRings = 16;
+  static constexpr std::size_t kMaxPatch = 256;
+
+ public:
+  long entries() const { return long(entries_.size()); }
+
+ private:
+  const InterfaceMesh& mesh_;
+  const FanTriangulation& fan_;
+  double minRadius_;
+  std::vector<int> start_, mark_, nodeFaceStart_, nodeFaces_, patch_;
+  std::vector<Entry> entries_;
+};
+
 L2Projection::SparseRows fromCsr(int rows, int cols, const std::vector<int>& outer,
                                  const std::vector<int>& inner, const std::vector<double>& values) {
   const Eigen::Map<const L2Projection::SparseRows> map(rows, cols, long(values.size()), outer.data(),
@@ -137,7 +289,7 @@ L2Projection::SparseRows fromCsr(int rows, int cols, const std::vector<int>& out
 
 L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& target,
                            const ProjectionOptions& options)
-    : ns_(source.numPoints()), nt_(target.numPoints()), mass_(options.mass) {
+    : ns_(source.numPoints()), nt_(target.numPoints()), mass_(resolveMass(options.mass, target.numPoints())) {
   const auto tSetup = Clock::now();
   report_.source = source.name;
   report_.target = target.name;
@@ -148,7 +300,9 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
   const SurfaceSearch search(source, options.tolerance);
   const FanTriangulation tf(target);
   report_.targetTriangles = tf.numTriangles();
-  const int level = std::max(1, options.quadratureLevel);
+  const int level = options.quadratureLevel == kAutoQuadrature ? autoQuadratureLevel(source, target)
+                                                               : std::max(1, options.quadratureLevel);
+  report_.quadratureLevel = level;
   std::vector<std::pair<int, double>> perTriangle;
   const std::vector<QuadPoint> qp =
       quadraturePoints(tf, level, mass_ == MassMatrix::Dual ? &perTriangle : nullptr);
@@ -159,6 +313,7 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
   // answer is a tight initial bound for the next search.
   std::vector<int> srcTri(std::size_t(nq), -1);
   std::vector<std::array<double, 3>> srcBary(static_cast<std::size_t>(nq));
+  std::vector<std::array<double, 3>> gap(options.gapCorrection ? std::size_t(nq) : 0);  // x − P(x)
   int hint = -1;
   for (long q = 0; q < nq; ++q) {
     const std::array<double, 3> x = tf.position(qp[std::size_t(q)].triangle, qp[std::size_t(q)].bary);
@@ -167,6 +322,8 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
     if (p.mapped) {
       srcTri[std::size_t(q)] = p.triangle;
       srcBary[std::size_t(q)] = p.bary;
+      if (options.gapCorrection)
+        gap[std::size_t(q)] = {x[0] - p.point[0], x[1] - p.point[1], x[2] - p.point[2]};
       report_.maxGap = std::max(report_.maxGap, p.distance);
     } else {
       if (report_.firstUnmappedPoints.size() < ProjectionReport::kListed)
@@ -178,6 +335,35 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
 
   t0 = Clock::now();
   const FanTriangulation& sf = search.fan();
+  // The patch reaches 2 × the larger mean edge: the fitted normal derivative is then well determined
+  // against the gaps (which grow as the coarser mesh's h²), see GapGradient.
+  const double sourceEdge = source.meanEdgeLength();
+  GapGradient gradient(source, sf, 2.0 * std::max(sourceEdge, target.meanEdgeLength()));
+  report_.gapCorrection = options.gapCorrection;
+  // Coinciding surfaces: a gap at round-off would only add entries of round-off size to C.
+  const auto negligible = [&](const std::array<double, 3>& d) {
+    return std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]) <= 1e-12 * sourceEdge;
+  };
+  if (options.gapCorrection) {
+    // Stencils only where a point has a gap (none on coinciding flat surfaces: no cost there).
+    std::vector<unsigned char> used(std::size_t(sf.numTriangles()), 0);
+    for (long q = 0; q < nq; ++q)
+      if (srcTri[std::size_t(q)] >= 0 && !negligible(gap[std::size_t(q)]))
+        used[std::size_t(srcTri[std::size_t(q)])] = 1;
+    gradient.build(used);
+    report_.flatGradientTriangles = gradient.flatTriangles;
+    report_.gapStencilEntries = gradient.entries();
+  }
+  // Adds w × (the source functions at quadrature point q, moved across the gap) to row i of C.
+  auto addSource = [&](RowAccumulator& acc, int i, long q, double w) {
+    const int t = srcTri[std::size_t(q)];
+    sf.forEachWeight(t, srcBary[std::size_t(q)], [&](int k, double phi) { acc.add(i, k, w * phi); });
+    if (!options.gapCorrection) return;
+    const std::array<double, 3>& d = gap[std::size_t(q)];
+    if (negligible(d)) return;
+    for (const GapGradient::Entry* e = gradient.begin(t); e != gradient.end(t); ++e)
+      acc.add(i, e->node, w * (d[0] * e->g[0] + d[1] * e->g[1] + d[2] * e->g[2]));
+  };
   RowAccumulator accM(nt_), accC(ns_);
   std::vector<int> mOuter{0}, mInner, cOuter{0}, cInner;
   std::vector<double> mValues, cValues;
@@ -238,8 +424,7 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
         rowSum += wi;
         tf.forEachWeight(p.triangle, p.bary, [&](int j, double n) { accM.add(i, j, wi * n); });
         if (srcTri[std::size_t(q)] >= 0)
-          sf.forEachWeight(srcTri[std::size_t(q)], srcBary[std::size_t(q)],
-                           [&](int k, double phi) { accC.add(i, k, wi * phi); });
+          addSource(accC, i, q, wi);
         else
           unmapped = true;
       }
@@ -331,9 +516,7 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
               const int b = int(std::find(nodes, nodes + n, node) - nodes);
               if (b < n) psi += arow[b] * nv;
             });
-            const double wpsi = w * psi;
-            sf.forEachWeight(srcTri[std::size_t(q)], srcBary[std::size_t(q)],
-                             [&](int k, double phi) { accC.add(i, k, wpsi * phi); });
+            addSource(accC, i, q, w * psi);
           }
       }
       finishRow(i, rowSum, unmapped);
@@ -372,7 +555,32 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
     report_.factorSeconds = secondsSince(t0);
   }
   scratch_.assign(std::size_t(3 * nt_), 0.0);
+
+  const bool coarserTarget = target.meanEdgeLength() >= kDefectRatio * source.meanEdgeLength();
+  if (options.defectCorrection == ProjectionOptions::Defect::On ||
+      (options.defectCorrection == ProjectionOptions::Defect::Auto && coarserTarget)) {
+    // P back onto the source: dual (sparse, exact for linear fields like H), never corrected itself.
+    ProjectionOptions back = options;
+    back.mass = MassMatrix::Dual;
+    back.quadratureLevel = kAutoQuadrature;
+    back.defectCorrection = ProjectionOptions::Defect::Off;
+    back_ = std::make_unique<L2Projection>(target, source, back);
+    // A source node P cannot reach would feed H a value pulled towards 0: only correct with P complete.
+    if (back_->report().allMapped() || options.defectCorrection == ProjectionOptions::Defect::On) {
+      report_.defectCorrection = true;
+      defectSource_.assign(std::size_t(3 * ns_), 0.0);
+      defectTarget_.assign(std::size_t(3 * nt_), 0.0);
+    } else {
+      back_.reset();
+    }
+  }
   report_.setupSeconds = secondsSince(tSetup);
+}
+
+int autoQuadratureLevel(const InterfaceMesh& source, const InterfaceMesh& target) {
+  const double hs = source.meanEdgeLength(), ht = target.meanEdgeLength();
+  if (!(hs > 0.0) || !(ht > 0.0) || !std::isfinite(ht / hs)) return 1;
+  return int(std::clamp(std::ceil(2.0 * ht / hs - 1e-9), 1.0, double(kMaxQuadratureLevel)));
 }
 
 template <int K>
@@ -457,20 +665,43 @@ void checkComponents(int components) {
 }
 }  // namespace
 
-void L2Projection::apply(const double* us, double* ut, int components) const {
-  checkComponents(components);
+void L2Projection::applyBase(const double* us, double* ut, int components) const {
   if (components == 1)
     applyK<1>(us, ut);
   else
     applyK<3>(us, ut);
 }
 
-void L2Projection::applyTranspose(const double* ft, double* fs, int components) const {
-  checkComponents(components);
+void L2Projection::applyTransposeBase(const double* ft, double* fs, int components) const {
   if (components == 1)
     applyTransposeK<1>(ft, fs);
   else
     applyTransposeK<3>(ft, fs);
+}
+
+// The defect correction (ProjectionOptions::defectCorrection): H u carries the projection's averaging error
+// e = H u − u_t (~c h_t² ∇²u); P maps the target field back to the source nearly exactly (the source is
+// finer), so H P H u carries it twice, and 2 H u − H P H u = u_t + O(h_t⁴) + the source's own error. Both
+// H and P reproduce constants and linear fields, so H' does, and Hᵀ' = 2Hᵀ − Hᵀ Pᵀ Hᵀ conserves force
+// and moment exactly as Hᵀ does.
+void L2Projection::apply(const double* us, double* ut, int components) const {
+  checkComponents(components);
+  applyBase(us, ut, components);
+  if (!back_) return;
+  back_->apply(ut, defectSource_.data(), components);
+  applyBase(defectSource_.data(), defectTarget_.data(), components);
+  const std::size_t n = std::size_t(nt_) * std::size_t(components);
+  for (std::size_t i = 0; i < n; ++i) ut[i] = 2.0 * ut[i] - defectTarget_[i];
+}
+
+void L2Projection::applyTranspose(const double* ft, double* fs, int components) const {
+  checkComponents(components);
+  applyTransposeBase(ft, fs, components);
+  if (!back_) return;
+  back_->applyTranspose(fs, defectTarget_.data(), components);
+  applyTransposeBase(defectTarget_.data(), defectSource_.data(), components);
+  const std::size_t n = std::size_t(ns_) * std::size_t(components);
+  for (std::size_t i = 0; i < n; ++i) fs[i] = 2.0 * fs[i] - defectSource_[i];
 }
 
 void L2Projection::apply(const Eigen::VectorXd& us, Eigen::VectorXd& ut, int components) const {
@@ -492,6 +723,30 @@ void L2Projection::applyTranspose(const Eigen::VectorXd& ft, Eigen::VectorXd& fs
 }
 
 L2Projection::SparseRows L2Projection::operatorMatrix(double dropTolerance) const {
+  if (back_) {  // the corrected operator, column by column
+    std::vector<Eigen::Triplet<double, int>> entries;
+    std::vector<double> e(std::size_t(ns_), 0.0);
+    std::vector<double> col(std::size_t(nt_), 0.0);
+    std::vector<double> rowMax(std::size_t(nt_), 0.0);
+    for (int j = 0; j < ns_; ++j) {
+      e[std::size_t(j)] = 1.0;
+      apply(e.data(), col.data());
+      e[std::size_t(j)] = 0.0;
+      for (int i = 0; i < nt_; ++i)
+        if (col[std::size_t(i)] != 0.0) {
+          entries.emplace_back(i, j, col[std::size_t(i)]);
+          rowMax[std::size_t(i)] = std::max(rowMax[std::size_t(i)], std::abs(col[std::size_t(i)]));
+        }
+    }
+    entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                 [&](const auto& t) {
+                                   return std::abs(t.value()) < dropTolerance * rowMax[std::size_t(t.row())];
+                                 }),
+                  entries.end());
+    SparseRows h(nt_, ns_);
+    h.setFromTriplets(entries.begin(), entries.end());
+    return h;
+  }
   if (mass_ != MassMatrix::Consistent) {
     SparseRows h = lumpedInv_.asDiagonal() * c_;
     return h;

@@ -14,6 +14,7 @@
 #include <Eigen/SparseCore>
 #include <array>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,20 +23,38 @@
 
 namespace fsi::coupling {
 
-enum class MassMatrix { Consistent, Lumped, Dual };
+/// Auto: Consistent up to kAutoConsistentMaxNodes target nodes, Dual above (same accuracy, sparse, and its
+/// apply stays above 10⁷ nodes/s where the consistent solves fall below it; docs/PROJECTION.md).
+enum class MassMatrix { Consistent, Lumped, Dual, Auto };
 inline const char* toString(MassMatrix m) {
-  return m == MassMatrix::Consistent ? "consistent" : (m == MassMatrix::Lumped ? "lumped" : "dual");
+  switch (m) {
+    case MassMatrix::Consistent:
+      return "consistent";
+    case MassMatrix::Lumped:
+      return "lumped";
+    case MassMatrix::Dual:
+      return "dual";
+    case MassMatrix::Auto:
+      return "auto";
+  }
+  return "?";
+}
+inline constexpr int kAutoConsistentMaxNodes = 5000;
+/// The variant Auto stands for on a target of `targetNodes` nodes; any other variant is itself.
+inline MassMatrix resolveMass(MassMatrix m, int targetNodes) {
+  if (m != MassMatrix::Auto) return m;
+  return targetNodes <= kAutoConsistentMaxNodes ? MassMatrix::Consistent : MassMatrix::Dual;
 }
 /// The names users write for the projection's mass matrix (`projection` in the adapter's options,
 /// `fsi map-check --variant`), in the order of the enum: the one list every reader of such a name uses.
 inline const std::vector<std::string>& massMatrixNames() {
   static const std::vector<std::string> names{toString(MassMatrix::Consistent), toString(MassMatrix::Lumped),
-                                              toString(MassMatrix::Dual)};
+                                              toString(MassMatrix::Dual), toString(MassMatrix::Auto)};
   return names;
 }
 /// The mass matrix a name stands for; false (and `out` untouched) for any other name.
 inline bool massMatrixFromName(const std::string& name, MassMatrix& out) {
-  for (MassMatrix m : {MassMatrix::Consistent, MassMatrix::Lumped, MassMatrix::Dual})
+  for (MassMatrix m : {MassMatrix::Consistent, MassMatrix::Lumped, MassMatrix::Dual, MassMatrix::Auto})
     if (name == toString(m)) {
       out = m;
       return true;
@@ -48,10 +67,32 @@ struct ProjectionOptions {
   /// Absolute distance: target quadrature points farther than this from the source surface are unmapped.
   double tolerance = std::numeric_limits<double>::infinity();
   /// Quadrature of C and M_t: each target fan triangle is split into level² triangles, each integrated by
-  /// the 3-point edge-midpoint rule (exact for quadratics). Raise it when the source is much finer than the
-  /// target, so that every source node receives force through Hᵀ.
-  int quadratureLevel = 1;
+  /// the 3-point edge-midpoint rule (exact for quadratics). kAutoQuadrature (the default) chooses it from
+  /// the meshes' mean edge lengths (autoQuadratureLevel), so that a source finer than the target is sampled
+  /// densely enough for Hᵀ to load every source node smoothly; a positive value is used as given.
+  int quadratureLevel = 0;
+  /// Transport the source field across the gap between the two discrete surfaces to first order (the
+  /// source's 3D gradient, fitted on each source triangle's neighbourhood): H then maps every field linear
+  /// in x, y, z exactly also on curved surfaces that do not coincide, so rigid rotations reach the target
+  /// undistorted and Hᵀ conserves the moment exactly. See docs/PROJECTION.md ("Gap correction").
+  bool gapCorrection = true;
+  /// Defect correction H' = 2H − H P H, P the (dual) projection back from the target to the source: removes
+  /// the projection's own averaging over the target's hat functions (~h_t²∇²f at the nodes), which a target
+  /// much coarser than the source would otherwise add to the field; keeps constants and linear fields
+  /// exact (so force and moment), Hᵀ' = 2Hᵀ − Hᵀ Pᵀ Hᵀ stays smooth. Auto: on when the target's mean edge is
+  /// at least kDefectRatio × the source's and P maps every source node. See docs/PROJECTION.md.
+  enum class Defect { Off, On, Auto } defectCorrection = Defect::Auto;
 };
+
+inline constexpr double kDefectRatio = 1.5;
+
+inline constexpr int kAutoQuadrature = 0;
+/// Largest level autoQuadratureLevel chooses (and map-check/the adapter accept).
+inline constexpr int kMaxQuadratureLevel = 64;
+/// The level chosen for quadratureLevel = kAutoQuadrature: ceil(2 × target / source mean edge length),
+/// at least 1 and at most kMaxQuadratureLevel, i.e. quadrature sub-triangles about half a source edge
+/// across (measured: docs/PROJECTION.md, "Quadrature").
+int autoQuadratureLevel(const InterfaceMesh& source, const InterfaceMesh& target);
 
 /// A target quadrature point that found no source surface within the tolerance.
 struct UnmappedPoint {
@@ -63,6 +104,14 @@ struct UnmappedPoint {
 struct ProjectionReport {
   std::string source, target;  ///< mesh names
   int sourceNodes = 0, targetNodes = 0, targetTriangles = 0;
+  int quadratureLevel = 1;        ///< the level used (chosen when the options said kAutoQuadrature)
+  bool gapCorrection = false;     ///< the source field was transported across the gap
+  bool defectCorrection = false;  ///< H' = 2H − H P H is applied (ProjectionOptions::defectCorrection)
+  /// Source triangles whose neighbourhood is flat (their normal derivative is unknown and taken as 0; the
+  /// correction is then only tangential): exact linear reproduction needs gaps only where it is curved.
+  long flatGradientTriangles = 0;
+  long gapStencilEntries =
+      0;  ///< (node, gradient weight) pairs of the gap correction (setup memory, 32 B each)
   long quadraturePoints = 0;
   long unmappedQuadraturePoints = 0;
   std::vector<UnmappedPoint> firstUnmappedPoints;  ///< up to kListed
@@ -87,7 +136,7 @@ class L2Projection {
 
   int sourceSize() const { return ns_; }
   int targetSize() const { return nt_; }
-  MassMatrix mass() const { return mass_; }
+  MassMatrix mass() const { return mass_; }  ///< never Auto: the variant it chose
   const ProjectionReport& report() const { return report_; }
 
   /// u_t = H u_s for `components` = 1 or 3 (vectors xyz-interleaved). us has sourceSize()·components values,
@@ -110,10 +159,14 @@ class L2Projection {
   /// H itself as a sparse matrix. Lumped, Dual: diag⁻¹ C, as sparse as C. Consistent: M_t⁻¹ C is dense in
   /// principle (the inverse of a mass matrix has no zero entries), so it is solved column by column and
   /// entries below dropTolerance × (largest entry in its row) are dropped: for inspection and small meshes;
-  /// apply() never forms it.
+  /// apply() never forms it. With the defect correction, the corrected operator, by one apply per source
+  /// node (and C, targetMass() are those of the uncorrected H).
   SparseRows operatorMatrix(double dropTolerance = 0.0) const;
 
  private:
+  // The uncorrected H and Hᵀ.
+  void applyBase(const double* us, double* ut, int components) const;
+  void applyTransposeBase(const double* ft, double* fs, int components) const;
   template <int K>
   void applyK(const double* us, double* ut) const;
   template <int K>
@@ -133,6 +186,8 @@ class L2Projection {
   std::vector<double> lx_, dinv_;
   std::vector<unsigned char> nodeMapped_;
   mutable std::vector<double> scratch_;
+  std::unique_ptr<L2Projection> back_;  // P (target → source) of the defect correction, or null
+  mutable std::vector<double> defectSource_, defectTarget_;
 };
 
 }  // namespace fsi::coupling

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "coupling/interface/SurfaceSearch.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::coupling {
@@ -56,12 +57,14 @@ TestFields makeFields(const InterfaceMesh& a, const InterfaceMesh& b) {
   return f;
 }
 
+// Nodal error of `map` (source values → target values) for field f, over the target nodes h mapped.
 FieldError fieldError(const L2Projection& h, const InterfaceMesh& src, const InterfaceMesh& dst,
-                      const std::function<double(const Vec3&)>& f) {
+                      const std::function<double(const Vec3&)>& f,
+                      const std::function<void(const double*, double*)>& map) {
   std::vector<double> us, ut(std::size_t(dst.numPoints()));
   us.reserve(std::size_t(src.numPoints()));
   for (const Vec3& p : src.points) us.push_back(f(p));
-  h.apply(us.data(), ut.data());
+  map(us.data(), ut.data());
   double lo = HUGE_VAL, hi = -HUGE_VAL, maxErr = 0.0, sum2 = 0.0;
   long n = 0;
   for (int i = 0; i < dst.numPoints(); ++i) {
@@ -109,8 +112,55 @@ DirectionCheck check(const InterfaceMesh& src, const InterfaceMesh& dst, const T
   const L2Projection h(src, dst, po);
   DirectionCheck d;
   d.report = h.report();
-  d.linear = fieldError(h, src, dst, [&](const Vec3& x) { return fields.linear(x); });
-  d.quadratic = fieldError(h, src, dst, [&](const Vec3& x) { return fields.quadratic(x); });
+  d.mass = h.mass();
+  const auto linear = [&](const Vec3& x) { return fields.linear(x); };
+  const auto quadratic = [&](const Vec3& x) { return fields.quadratic(x); };
+  const auto project = [&](const double* us, double* ut) { h.apply(us, ut); };
+  d.linear = fieldError(h, src, dst, linear, project);
+  d.quadratic = fieldError(h, src, dst, quadratic, project);
+  // Nearest-point interpolation, from the same search as the projection's.
+  const SurfaceSearch search(src);
+  std::vector<int> tri;
+  std::vector<std::array<double, 3>> bary;
+  int hint = -1;
+  for (const Vec3& x : dst.points) {
+    const SurfacePoint p = search.closest(x, hint);
+    hint = p.triangle;
+    tri.push_back(p.triangle);
+    bary.push_back(p.bary);
+  }
+  const auto nearest = [&](const double* us, double* ut) {
+    for (std::size_t i = 0; i < tri.size(); ++i) ut[i] = search.fan().interpolate(tri[i], bary[i], us);
+  };
+  d.linearNearest = fieldError(h, src, dst, linear, nearest);
+  d.quadraticNearest = fieldError(h, src, dst, quadratic, nearest);
+
+  // Smoothness: the nodal share of a unit pressure on the target, carried back by Hᵀ, against the source's
+  // own shares ∫φ_j (a third of each fan triangle's area per corner, a centre's split over its face).
+  {
+    const FanTriangulation& sf = search.fan();
+    std::vector<double> share(std::size_t(src.numPoints()), 0.0);
+    for (int t = 0; t < sf.numTriangles(); ++t)
+      for (std::size_t k = 0; k < 3; ++k) {
+        std::array<double, 3> corner{0.0, 0.0, 0.0};
+        corner[k] = 1.0;
+        sf.forEachWeight(t, corner, [&](int j, double w) { share[std::size_t(j)] += w * sf.area(t) / 3.0; });
+      }
+    std::vector<double> pt(h.lumpedMass().data(), h.lumpedMass().data() + dst.numPoints()),
+        ps(std::size_t(src.numPoints()));
+    h.applyTranspose(pt.data(), ps.data());
+    double sum2 = 0.0;
+    long n = 0;
+    for (std::size_t j = 0; j < ps.size(); ++j) {
+      if (!(share[j] > 0.0)) continue;  // a node of no face
+      const double e = ps[j] / share[j] - 1.0;
+      sum2 += e * e;
+      d.pressureMax = std::max(d.pressureMax, std::abs(e));
+      if (std::abs(ps[j]) < 1e-9 * share[j]) ++d.zeroForceNodes;
+      ++n;
+    }
+    d.pressureRms = n > 0 ? std::sqrt(sum2 / double(n)) : 0.0;
+  }
 
   // A random force field with a non-zero resultant, so the relative force error is meaningful.
   std::mt19937 rng(options.seed);
@@ -147,6 +197,9 @@ nlohmann::json reportJson(const ProjectionReport& r) {
           {"source_nodes", r.sourceNodes},
           {"target_nodes", r.targetNodes},
           {"target_triangles", r.targetTriangles},
+          {"quadrature_level", r.quadratureLevel},
+          {"gap_correction", r.gapCorrection},
+          {"defect_correction", r.defectCorrection},
           {"quadrature_points", r.quadraturePoints},
           {"unmapped_quadrature_points", r.unmappedQuadraturePoints},
           {"first_unmapped_quadrature_points", points},
@@ -192,6 +245,7 @@ void checkFinite(const MapCheckResult& r) {
                                                      {"quadratic field max error", d.quadratic.max},
                                                      {"quadratic field rms error", d.quadratic.rms},
                                                      {"force error", d.forceError},
+                                                     {"pressure transfer deviation", d.pressureRms},
                                                      {"moment error", d.momentError}};
     for (const auto& [what, value] : values)
       if (!std::isfinite(value))
@@ -211,7 +265,8 @@ MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const
   r.tolerance =
       options.tolerance >= 0.0 ? options.tolerance : 0.25 * std::max(a.meanEdgeLength(), b.meanEdgeLength());
   const TestFields fields = makeFields(a, b);
-  const ProjectionOptions po{options.mass, r.tolerance, options.quadratureLevel};
+  const ProjectionOptions po{options.mass, r.tolerance, options.quadratureLevel, options.gapCorrection,
+                             options.defectCorrection};
   r.directions[0] = check(a, b, fields, po, options);
   r.directions[1] = check(b, a, fields, po, options);
   checkFinite(r);
@@ -222,8 +277,14 @@ nlohmann::json MapCheckResult::toJson() const {
   nlohmann::json dirs = nlohmann::json::array();
   for (const DirectionCheck& d : directions) {
     nlohmann::json j = reportJson(d.report);
+    j["variant"] = toString(d.mass);
     j["linear_error"] = {{"max", d.linear.max}, {"rms", d.linear.rms}};
     j["quadratic_error"] = {{"max", d.quadratic.max}, {"rms", d.quadratic.rms}};
+    j["linear_error_nearest_point"] = {{"max", d.linearNearest.max}, {"rms", d.linearNearest.rms}};
+    j["quadratic_error_nearest_point"] = {{"max", d.quadraticNearest.max}, {"rms", d.quadraticNearest.rms}};
+    j["uniform_pressure_transfer"] = {{"rms_deviation", d.pressureRms},
+                                      {"max_deviation", d.pressureMax},
+                                      {"zero_force_nodes", d.zeroForceNodes}};
     j["conservative_force_error"] = d.forceError;
     j["conservative_moment_error"] = d.momentError;
     j["apply_seconds_scalar"] = d.applySecondsScalar;
@@ -254,6 +315,18 @@ std::string MapCheckResult::summary() const {
   };
   row("", "A -> B", "B -> A");
   both(
+      "projection variant", [](const DirectionCheck& d) { return toString(d.mass); }, "{}");
+  both(
+      "quadrature level (target triangle split L x L)",
+      [](const DirectionCheck& d) { return d.report.quadratureLevel; }, "{}");
+  both(
+      "gap / defect correction",
+      [](const DirectionCheck& d) {
+        return fmt::format("{} / {}", d.report.gapCorrection ? "yes" : "no",
+                           d.report.defectCorrection ? "yes" : "no");
+      },
+      "{}");
+  both(
       "target quadrature points", [](const DirectionCheck& d) { return d.report.quadraturePoints; }, "{}");
   both(
       "  not mapped", [](const DirectionCheck& d) { return d.report.unmappedQuadraturePoints; }, "{}");
@@ -271,6 +344,22 @@ std::string MapCheckResult::summary() const {
       "quadratic field, max error", [](const DirectionCheck& d) { return d.quadratic.max; }, "{:.3e}");
   both(
       "quadratic field, rms error", [](const DirectionCheck& d) { return d.quadratic.rms; }, "{:.3e}");
+  both(
+      "  nearest-point interpolation: linear, max",
+      [](const DirectionCheck& d) { return d.linearNearest.max; }, "{:.3e}");
+  both(
+      "  nearest-point interpolation: quadratic, max",
+      [](const DirectionCheck& d) { return d.quadraticNearest.max; }, "{:.3e}");
+  both(
+      "  nearest-point interpolation: quadratic, rms",
+      [](const DirectionCheck& d) { return d.quadraticNearest.rms; }, "{:.3e}");
+  both(
+      "uniform pressure by H^T: rms deviation", [](const DirectionCheck& d) { return d.pressureRms; },
+      "{:.3e}");
+  both(
+      "  max deviation", [](const DirectionCheck& d) { return d.pressureMax; }, "{:.3e}");
+  both(
+      "  source nodes with zero force", [](const DirectionCheck& d) { return d.zeroForceNodes; }, "{}");
   both(
       "conservative (H^T) force error", [](const DirectionCheck& d) { return d.forceError; }, "{:.3e}");
   both(

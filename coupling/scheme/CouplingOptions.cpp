@@ -105,6 +105,10 @@ OptionValues::Value parse(const OptionSpec& spec, const std::vector<std::string>
       return v;
     case OptionType::Integer:
     case OptionType::Real: {
+      if (contains(spec.choices, t)) {  // a word the number may be replaced by (`auto`)
+        v.words = tokens;
+        return v;
+      }
       const bool integer = spec.type == OptionType::Integer;
       char* end = nullptr;
       errno = 0;
@@ -179,17 +183,18 @@ std::string OptionSpec::rangeText() const {
     case OptionType::Integer:
     case OptionType::Real: {
       const std::string kind = type == OptionType::Integer ? "integer" : "number";
+      const std::string words = choices.empty() ? "" : join(choices, " or ") + ", or ";
       if (lower && upper)
-        return (type == OptionType::Integer ? "integer, " : "") + number(lower->value) +
+        return words + (type == OptionType::Integer ? "integer, " : "") + number(lower->value) +
                (lower->inclusive ? " <= " : " < ") + key + (upper->inclusive ? " <= " : " < ") +
                number(upper->value);
       if (lower)
-        return (type == OptionType::Integer ? "integer, " : "") + key + (lower->inclusive ? " >= " : " > ") +
-               number(lower->value);
+        return words + (type == OptionType::Integer ? "integer, " : "") + key +
+               (lower->inclusive ? " >= " : " > ") + number(lower->value);
       if (upper)
-        return (type == OptionType::Integer ? "integer, " : "") + key + (upper->inclusive ? " <= " : " < ") +
-               number(upper->value);
-      return "any " + kind;
+        return words + (type == OptionType::Integer ? "integer, " : "") + key +
+               (upper->inclusive ? " <= " : " < ") + number(upper->value);
+      return words + "any " + kind;
     }
   }
   return {};
@@ -221,6 +226,9 @@ double OptionValues::real(const std::string& key) const {
 }
 long OptionValues::integer(const std::string& key) const {
   return long(at(key, "integer").number);
+}
+bool OptionValues::isWord(const std::string& key) const {
+  return !at(key, "number or word").words.empty();
 }
 bool OptionValues::flag(const std::string& key) const {
   return at(key, "flag").flag;
@@ -433,8 +441,25 @@ OptionSchema couplingOptionSchema() {
   coupled.push_back(maxIterations);
   coupled.push_back(integerOption("extrapolation", "1", Bound{0, true}, Bound{2, true},
                                   "predictor order of a window's first displacement (staggered: stability)"));
-  coupled.push_back(wordSpec("projection", OptionType::Choice, toString(MassMatrix::Consistent),
-                             massMatrixNames(), "L2 projection between the non-matching interface meshes"));
+  coupled.push_back(
+      wordSpec("projection", OptionType::Choice, toString(MassMatrix::Consistent), massMatrixNames(),
+               "L2 projection between the non-matching interface meshes (auto: consistent up to "
+               "5000 fluid points, dual above)"));
+  OptionSpec quadrature = integerOption(
+      "quadratureLevel", "1", Bound{1, true}, Bound{double(kMaxQuadratureLevel), true},
+      "sub-triangles per fluid face edge for the projection's quadrature; auto: from the meshes' edge ratio");
+  quadrature.choices = {"auto"};
+  coupled.push_back(quadrature);
+  coupled.push_back(
+      wordSpec("defectCorrection", OptionType::Choice, "off", {"auto", "on", "off"},
+               "projection: remove its averaging error where the fluid mesh is 1.5x coarser than "
+               "the structure's (auto) or always/never"));
+  // The adapter keeps the projection of the validated runs by default (consistent, level 1, no corrections):
+  // with auto / auto / yes / auto the main job's canopy (ramair-kt, coupled.settings) hit the mesh guard in
+  // window 149 of 200 (docs/PROJECTION.md, "Defaults in a coupled run"); map-check reports both.
+  coupled.push_back(wordSpec("gapCorrection", OptionType::Switch, "no", {},
+                             "projection: carry fields across the gap between curved non-matching meshes "
+                             "(exact linear fields and moment; docs/PROJECTION.md)"));
   OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
                                        "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";

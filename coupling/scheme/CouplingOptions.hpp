@@ -53,7 +53,7 @@ struct OptionSpec {
   std::string defaultNote;   ///< describes a default the host computes (no defaultValue then)
   bool required = false;
   std::optional<Bound> lower, upper;  ///< Integer and Real
-  std::vector<std::string> choices;   ///< Choice
+  std::vector<std::string> choices;   ///< Choice; Integer, Real: words accepted instead of a number
   std::string description;            ///< one line
   std::vector<OptionCondition> when;  ///< all must hold for the option to have an effect
   std::string refusal;                ///< non-empty: a known key that must not be given, and why
@@ -87,6 +87,8 @@ class OptionValues {
   bool has(const std::string& key) const;    ///< given, or absent with a default that applies
   double real(const std::string& key) const;
   long integer(const std::string& key) const;
+  /// True when an Integer or Real option holds one of its words (`auto`) rather than a number.
+  bool isWord(const std::string& key) const;
   bool flag(const std::string& key) const;
   const std::string& text(const std::string& key) const;  ///< Choice or Text
   std::vector<std::string> words(const std::string& key) const;

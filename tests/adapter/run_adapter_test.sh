@@ -477,6 +477,8 @@ PY
     refused "$work/case" "loadRelaxation 1.5;" "option 'loadRelaxation' = 1.5 is out of range; valid: 0 < loadRelaxation <= 1"
     refused "$work/case" "scheme implicite;" "option 'scheme' = implicite is not a valid choice (did you mean 'implicit'?)"
     refused "$work/case" "maxIterations 2.5; scheme implicit;" "option 'maxIterations' = 2.5 is not an integer"
+    refused "$work/case" "quadratureLevel 0;" "option 'quadratureLevel' = 0 is out of range; valid: auto, or integer, 1 <= quadratureLevel <= 64"
+    refused "$work/case" "quadratureLevel automatic;" "option 'quadratureLevel' = automatic is not an integer; valid: auto, or integer"
     # OpenFOAM's time-control keys: the coupling would skip steps or (implicit) run twice after a restore
     for key in "timeStart 0.1" "executeInterval 2" "writeControl timeStep"; do
       refused "$work/case" "scheme implicit; $key;" "option '${key%% *}' cannot be used here: OpenFOAM would run the coupling under a time control"

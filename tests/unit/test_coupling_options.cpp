@@ -187,6 +187,22 @@ TEST(CouplingOptions, EveryBadValueNamesTheKeyAndTheValidRange) {
   EXPECT_NE(errorOf(implicitCase({{"omega", {"0.2"}}})).find("given twice"), std::string::npos);
 }
 
+TEST(CouplingOptions, QuadratureLevelIsAutoOrAnInteger) {
+  // `quadratureLevel auto;` or a level 1..64; anything else is refused naming the key and both forms.
+  const OptionSchema schema = couplingOptionSchema();
+  EXPECT_EQ(schema.validate(minimal({{"quadratureLevel", {"64"}}})).integer("quadratureLevel"), 64);
+  for (const char* bad : {"0", "65", "2.5", "automatic", "-1", "1e400"}) {
+    try {
+      schema.validate(minimal({{"quadratureLevel", {bad}}}));
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const OptionError& e) {
+      EXPECT_EQ(e.key(), "quadratureLevel");
+      EXPECT_NE(std::string(e.what()).find("auto, or integer, 1 <= quadratureLevel <= 64"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(CouplingOptions, ValuesDefaultsAndLists) {
   const OptionSchema schema = couplingOptionSchema();
   const OptionValues v = schema.validate(implicitCase());
@@ -204,7 +220,15 @@ TEST(CouplingOptions, ValuesDefaultsAndLists) {
   const OptionValues d = schema.validate(minimal());
   EXPECT_EQ(d.text("scheme"), "staggered");
   EXPECT_EQ(d.integer("extrapolation"), 1);
+  // the projection of the validated coupled runs (docs/PROJECTION.md, "Defaults in a coupled run")
   EXPECT_EQ(d.text("projection"), "consistent");
+  EXPECT_FALSE(d.isWord("quadratureLevel"));
+  EXPECT_EQ(d.integer("quadratureLevel"), 1);
+  EXPECT_FALSE(d.flag("gapCorrection"));
+  EXPECT_EQ(d.text("defectCorrection"), "off");
+  EXPECT_TRUE(schema.validate(minimal({{"quadratureLevel", {"auto"}}})).isWord("quadratureLevel"));
+  EXPECT_FALSE(schema.validate(minimal({{"quadratureLevel", {"3"}}})).isWord("quadratureLevel"));
+  EXPECT_EQ(schema.validate(minimal({{"quadratureLevel", {"3"}}})).integer("quadratureLevel"), 3);
   EXPECT_FALSE(d.has("omega"));  // no effect without the implicit scheme
   EXPECT_DOUBLE_EQ(schema.validate(minimal({{"scheme", {"implicit"}}})).real("omega"), 0.1);
   EXPECT_DOUBLE_EQ(

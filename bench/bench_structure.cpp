@@ -1,5 +1,6 @@
 // Google Benchmark of the structure solver's hot loops.
-//   build/bin/fsi_bench --benchmark_filter=Membrane      force kernel alone, 10^3..10^6 triangles
+//   build/bin/fsi_bench --benchmark_filter=Membrane      force kernel alone, 10^3..10^6 triangles (batched
+//                                                        and the per-element reference)
 //   build/bin/fsi_bench --benchmark_filter=Step          full central-difference step
 // items_per_second = element updates per second.
 #include <benchmark/benchmark.h>
@@ -59,10 +60,13 @@ Scene& cachedScene(long n, const std::string& extra) {
   return *s;
 }
 
-void BM_MembraneKernel(benchmark::State& state) {
+// The scene's membrane effect (batched kernel), or the per-element reference kernel on the same model.
+void membraneKernel(benchmark::State& state, MembraneKernel kernel) {
   Scene& s = cachedScene(state.range(0), "");
   Model& m = *s.model;
-  const Effect* membrane = s.effectList().front();  // the element forces come first; this sheet has no cables
+  const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
+  // The element forces come first in the scene's list; this sheet has no cables.
+  const Effect* membrane = kernel == MembraneKernel::Batched ? s.effectList().front() : &perElement;
   ForceContext ctx;
   ctx.x = m.nodes.x.data();
   ctx.v = m.nodes.v.data();
@@ -76,6 +80,13 @@ void BM_MembraneKernel(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * m.membranes.count);
   state.counters["triangles"] = m.membranes.count;
+}
+
+void BM_MembraneKernel(benchmark::State& state) {
+  membraneKernel(state, MembraneKernel::Batched);
+}
+void BM_MembraneKernelPerElement(benchmark::State& state) {
+  membraneKernel(state, MembraneKernel::PerElement);
 }
 
 // The pressure effect alone (the scene's only load).
@@ -132,6 +143,10 @@ void BM_StepWithViscosityAndGravity(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_MembraneKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneKernelPerElement)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PressureKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NodeSweep)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Step)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);

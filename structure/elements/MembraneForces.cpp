@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "structure/elements/MembraneBatch.hpp"
 #include "structure/elements/MembraneKinematics.hpp"
 
 namespace fsi::structure {
@@ -123,30 +124,42 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
   if constexpr (Energy) ctx.strainEnergy += energy;
 }
 
+// The batched kernel over the block's whole batches, the per-element one over the remainder.
+template <bool Wrinkling, bool Viscous, bool Energy>
+void batchedBlock(const MembraneTriangles& el, const MembraneBlock& blk, const MembraneViscosity& visc,
+                  ForceContext& ctx) {
+  MembraneBlock rest = blk;
+  rest.begin = membrane::membraneBatches<Wrinkling, Viscous, Energy>(el, blk, visc, ctx);
+  if (rest.begin < rest.end) membraneBlock<Wrinkling, Viscous, Energy>(el, rest, visc, ctx);
+}
+
 template <bool Wrinkling, bool Viscous>
 void dispatchEnergy(const MembraneTriangles& el, const MembraneBlock& b, const MembraneViscosity& v,
-                    ForceContext& ctx) {
-  if (ctx.wantEnergy) {
-    membraneBlock<Wrinkling, Viscous, true>(el, b, v, ctx);
+                    MembraneKernel kernel, ForceContext& ctx) {
+  if (kernel == MembraneKernel::Batched) {
+    ctx.wantEnergy ? batchedBlock<Wrinkling, Viscous, true>(el, b, v, ctx)
+                   : batchedBlock<Wrinkling, Viscous, false>(el, b, v, ctx);
   } else {
-    membraneBlock<Wrinkling, Viscous, false>(el, b, v, ctx);
+    ctx.wantEnergy ? membraneBlock<Wrinkling, Viscous, true>(el, b, v, ctx)
+                   : membraneBlock<Wrinkling, Viscous, false>(el, b, v, ctx);
   }
 }
 
 }  // namespace
 
-MembraneForces::MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity)
-    : el_(elements), visc_(viscosity) {}
+MembraneForces::MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity,
+                               MembraneKernel kernel)
+    : el_(elements), visc_(viscosity), kernel_(kernel) {}
 
 void MembraneForces::addForces(ForceContext& ctx) const {
   // One branch per material block and step; none per element.
   for (const MembraneBlock& b : el_.blocks) {
     if (b.wrinkling) {
-      visc_.enabled() ? dispatchEnergy<true, true>(el_, b, visc_, ctx)
-                      : dispatchEnergy<true, false>(el_, b, visc_, ctx);
+      visc_.enabled() ? dispatchEnergy<true, true>(el_, b, visc_, kernel_, ctx)
+                      : dispatchEnergy<true, false>(el_, b, visc_, kernel_, ctx);
     } else {
-      visc_.enabled() ? dispatchEnergy<false, true>(el_, b, visc_, ctx)
-                      : dispatchEnergy<false, false>(el_, b, visc_, ctx);
+      visc_.enabled() ? dispatchEnergy<false, true>(el_, b, visc_, kernel_, ctx)
+                      : dispatchEnergy<false, false>(el_, b, visc_, kernel_, ctx);
     }
   }
 }

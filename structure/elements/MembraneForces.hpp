@@ -34,9 +34,14 @@ struct MembraneStressField {
   std::vector<double> majorStrain;  ///< major principal Green–Lagrange strain
 };
 
+/// Which loop evaluates the triangles: batches of lanes::kWidth in vector lanes (MembraneBatch.hpp, the
+/// default) or one element at a time (the reference the batched kernel is tested and benchmarked against).
+enum class MembraneKernel { Batched, PerElement };
+
 class MembraneForces final : public Effect {
  public:
-  MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity);
+  MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity,
+                 MembraneKernel kernel = MembraneKernel::Batched);
   std::string name() const override { return "membrane"; }
   void addForces(ForceContext& ctx) const override;
   /// Stresses, states and strains at configuration x (no forces); used at output times.
@@ -45,6 +50,7 @@ class MembraneForces final : public Effect {
  private:
   const MembraneTriangles& el_;
   MembraneViscosity visc_;
+  MembraneKernel kernel_;
 };
 
 /// Stresses, states and strains of every triangle at configuration x (the output fields and stress probes).

@@ -61,7 +61,7 @@ Scene& cachedScene(long n, const std::string& extra) {
 }
 
 // The scene's membrane effect (batched kernel), or the per-element reference kernel on the same model.
-void membraneKernel(benchmark::State& state, MembraneKernel kernel) {
+void membraneKernel(benchmark::State& state, MembraneKernel kernel, int threads = 1) {
   Scene& s = cachedScene(state.range(0), "");
   Model& m = *s.model;
   const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
@@ -72,6 +72,7 @@ void membraneKernel(benchmark::State& state, MembraneKernel kernel) {
   ctx.v = m.nodes.v.data();
   ctx.fint = m.nodes.fint.data();
   ctx.fext = m.nodes.fext.data();
+  ctx.threads = threads;
   for (auto _ : state) {
     ctx.minStableDt = 1e300;
     membrane->addForces(ctx);
@@ -87,6 +88,10 @@ void BM_MembraneKernel(benchmark::State& state) {
 }
 void BM_MembraneKernelPerElement(benchmark::State& state) {
   membraneKernel(state, MembraneKernel::PerElement);
+}
+// Batched kernel on 2 threads (solver.threads: 2). Wall time: the CPU time counts the calling thread only.
+void BM_MembraneKernelThreads2(benchmark::State& state) {
+  membraneKernel(state, MembraneKernel::Batched, 2);
 }
 
 // The pressure effect alone (the scene's only load).
@@ -119,10 +124,16 @@ void BM_NodeSweep(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * m.membranes.count);
 }
 
-void runSteps(benchmark::State& state, const std::string& extra) {
+void runSteps(benchmark::State& state, const std::string& extra,
+              MembraneKernel kernel = MembraneKernel::Batched, int threads = 1) {
   Scene& s = cachedScene(state.range(0), extra);
   Model& m = *s.model;
-  CentralDifference cd(m, s.effectList(), s.constraints, s.time.integrator);
+  std::vector<const Effect*> effects = s.effectList();
+  const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
+  if (kernel == MembraneKernel::PerElement) effects.front() = &perElement;  // the scenes have no viscosity
+  CentralDifferenceSettings settings = s.time.integrator;
+  settings.threads = threads;
+  CentralDifference cd(m, effects, s.constraints, settings);
   for (auto _ : state) {
     cd.step(1e300, false);
     benchmark::ClobberMemory();
@@ -133,6 +144,12 @@ void runSteps(benchmark::State& state, const std::string& extra) {
 
 void BM_Step(benchmark::State& state) {
   runSteps(state, "");
+}
+void BM_StepPerElement(benchmark::State& state) {
+  runSteps(state, "", MembraneKernel::PerElement);
+}
+void BM_StepThreads2(benchmark::State& state) {
+  runSteps(state, "", MembraneKernel::Batched, 2);
 }
 void BM_StepWithViscosityAndGravity(benchmark::State& state) {
   runSteps(state,
@@ -150,4 +167,15 @@ BENCHMARK(BM_MembraneKernelPerElement)
 BENCHMARK(BM_PressureKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NodeSweep)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Step)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepPerElement)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneKernelThreads2)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(BM_StepThreads2)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 BENCHMARK(BM_StepWithViscosityAndGravity)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);

@@ -18,8 +18,8 @@
 
 namespace fsi::structure::lanes {
 
-/// Elements per batch. 4 doubles = one AVX register; AVX-512 (8 lanes) did not beat it on this Zen core (its
-/// 512-bit operations run as two 256-bit halves), see docs/PERFORMANCE.md.
+/// Elements per batch: 4 doubles, one AVX register (the gather and scatter below are written for it; wider
+/// AVX-512 lanes were not tried: this Zen core runs them as two 256-bit halves).
 constexpr int kWidth = 4;
 
 typedef double Vd __attribute__((vector_size(kWidth * sizeof(double))));

@@ -51,6 +51,17 @@ class MembraneForces final : public Effect {
   const MembraneTriangles& el_;
   MembraneViscosity visc_;
   MembraneKernel kernel_;
+
+  // Threaded evaluation (ForceContext::threads > 1): one contiguous element range and one force buffer per
+  // share, made at the first threaded call and kept while the thread count stays.
+  struct ThreadShare {
+    int begin = 0, end = 0;  ///< elements
+    int lo = 0, hi = 0;      ///< dofs the elements touch
+    std::vector<double> f;   ///< forces of the share (dofs [lo, hi) used; share 0 uses the context's)
+  };
+  mutable std::vector<ThreadShare> shares_;
+  void partition(int shares) const;
+  void addForcesThreaded(ForceContext& ctx) const;
 };
 
 /// Stresses, states and strains of every triangle at configuration x (the output fields and stress probes).

@@ -2,9 +2,9 @@
 // Lanes: a small fixed-width vector of doubles for the batched element kernels (one element per lane).
 //
 // Built on the GCC/Clang vector extension, so the same source is portable: with AVX (FSI_NATIVE=ON on this
-// machine) a 4-lane vector is one ymm register; without it (the portable SSE2 build) the compiler splits each
-// operation into two xmm halves. The kernels stay branch-free: a per-lane condition is a mask (all bits set
-// where true) and a selection is a blend (`select`), never a jump.
+// machine) 4 lanes in one ymm register; without it (the portable SSE2 build) 2 lanes in one xmm register. The
+// kernels stay branch-free: a per-lane condition is a mask (all bits set where true) and a selection is a
+// blend (`select`), never a jump.
 
 #include <cmath>
 #include <cstdint>
@@ -19,14 +19,19 @@
 namespace fsi::structure::lanes {
 
 /// Elements per batch: 4 doubles, one AVX register (the gather and scatter below are written for it; wider
-/// AVX-512 lanes were not tried: this Zen core runs them as two 256-bit halves).
+/// AVX-512 lanes were not tried: this Zen core runs them as two 256-bit halves). Without AVX, 2 (one SSE2
+/// register): a 4-lane vector there would be passed between functions in memory (GCC's -Wpsabi).
+#if defined(__AVX__)
 constexpr int kWidth = 4;
+#else
+constexpr int kWidth = 2;
+#endif
 
 typedef double Vd __attribute__((vector_size(kWidth * sizeof(double))));
 typedef std::int64_t Vm __attribute__((vector_size(kWidth * sizeof(double))));  ///< lane mask (0 or ~0)
 
 inline Vd splat(double s) {
-  Vd v;
+  Vd v{};
   for (int l = 0; l < kWidth; ++l) v[l] = s;
   return v;
 }
@@ -43,12 +48,14 @@ inline Vd select(Vm mask, Vd a, Vd b) {
   return mask ? a : b;
 }
 
+/// std::max's order: a unless a < b.
 inline Vd max(Vd a, Vd b) {
   return a < b ? b : a;
-}  // std::max's order: a unless a < b
+}
+/// std::min's order: a unless b < a.
 inline Vd min(Vd a, Vd b) {
   return b < a ? b : a;
-}  // std::min's order: a unless b < a
+}
 inline Vd abs(Vd a) {
   return a < 0.0 ? -a : a;
 }
@@ -59,16 +66,10 @@ inline Vd sqrt(Vd a) {
   static_assert(kWidth == 4, "one ymm register per lane vector");
   return Vd(_mm256_sqrt_pd(__m256d(a)));
 #elif defined(__SSE2__)
-  static_assert(kWidth % 2 == 0, "xmm halves");
-  Vd r;
-  for (int h = 0; h < kWidth; h += 2) {
-    const __m128d s = _mm_sqrt_pd(_mm_set_pd(a[h + 1], a[h]));
-    r[h] = _mm_cvtsd_f64(s);
-    r[h + 1] = _mm_cvtsd_f64(_mm_unpackhi_pd(s, s));
-  }
-  return r;
+  static_assert(kWidth == 2, "one xmm register per lane vector");
+  return Vd(_mm_sqrt_pd(__m128d(a)));
 #else
-  Vd r;
+  Vd r{};
   for (int l = 0; l < kWidth; ++l) r[l] = std::sqrt(a[l]);
   return r;
 #endif
@@ -91,8 +92,12 @@ inline void gather3(const double* __restrict x, const int* idx, Vd out[3]) {
   const __m128d z23 = _mm_loadh_pd(_mm_load_sd(p2 + 2), p3 + 2);
   out[2] = Vd(_mm256_insertf128_pd(_mm256_castpd128_pd256(z01), z23, 1));
 #else
-  for (int l = 0; l < kWidth; ++l)
-    for (int i = 0; i < 3; ++i) out[i][l] = x[3 * idx[l] + i];
+  // Through an array: GCC 12 takes lane-by-lane writes into a vector for reads of an uninitialised one.
+  for (int i = 0; i < 3; ++i) {
+    double t[kWidth];
+    for (int l = 0; l < kWidth; ++l) t[l] = x[3 * idx[l] + i];
+    out[i] = load(t);
+  }
 #endif
 }
 
@@ -135,8 +140,11 @@ inline void loadRecords(const double* __restrict p, Vd out[n]) {
     return;
   }
 #endif
-  for (int l = 0; l < kWidth; ++l)
-    for (int j = 0; j < n; ++j) out[j][l] = p[n * l + j];
+  for (int j = 0; j < n; ++j) {
+    double t[kWidth];
+    for (int l = 0; l < kWidth; ++l) t[l] = p[n * l + j];
+    out[j] = load(t);
+  }
 }
 
 /// Sum of the lanes (the order is fixed, so a batched sum is reproducible).

@@ -1,5 +1,5 @@
-// The batched membrane kernel (MembraneBatch.hpp, lanes of 4 triangles) against the per-element kernel it
-// replaces, on randomised meshes with taut, wrinkled and slack triangles: forces, strain energy and stable
+// The batched membrane kernel (MembraneBatch.hpp, 4 lanes with AVX, 2 without) against the per-element kernel
+// it replaces, on randomised meshes with taut, wrinkled and slack triangles: forces, strain energy and stable
 // step must agree to round-off for every element count (whole batches and remainders) and block layout.
 #include <gtest/gtest.h>
 

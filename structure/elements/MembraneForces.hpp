@@ -12,6 +12,9 @@
 // Optional viscous stress (Rayleigh β and linear bulk viscosity b1) from Ė = sym(FᵀḞ).
 // The kinematics and the law live in MembraneKinematics.hpp (shared with the output and the stiffness
 // bounds); the rest of the element kind (mass, scaling, fields, diagnosis) in MembraneElement.
+// Evaluation: batches of lanes::kWidth triangles in vector lanes (MembraneBatch.hpp), the per-element loop
+// for each block's remainder and as the reference; with ForceContext::threads > 1, contiguous element shares
+// on OpenMP threads, each with its own force buffer (docs/PERFORMANCE.md "Threads").
 
 #include <cstdint>
 #include <vector>

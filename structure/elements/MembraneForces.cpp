@@ -233,7 +233,7 @@ void MembraneForces::addForcesThreaded(ForceContext& ctx) const {
       energy[s] = local.strainEnergy;
     }
 #pragma omp barrier
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait  // the end of the region joins the threads anyway
     for (int d = lo; d < hi; ++d) {
       double sum = 0.0;
       for (int s = 1; s < shares; ++s)

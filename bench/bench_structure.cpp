@@ -1,5 +1,6 @@
 // Google Benchmark of the structure solver's hot loops.
-//   build/bin/fsi_bench --benchmark_filter=Membrane      force kernel alone, 10^3..10^6 triangles
+//   build/bin/fsi_bench --benchmark_filter=Membrane      force kernel alone, 10^3..10^6 triangles (batched
+//                                                        and the per-element reference)
 //   build/bin/fsi_bench --benchmark_filter=Step          full central-difference step
 // items_per_second = element updates per second.
 #include <benchmark/benchmark.h>
@@ -59,15 +60,19 @@ Scene& cachedScene(long n, const std::string& extra) {
   return *s;
 }
 
-void BM_MembraneKernel(benchmark::State& state) {
+// The scene's membrane effect (batched kernel), or the per-element reference kernel on the same model.
+void membraneKernel(benchmark::State& state, MembraneKernel kernel, int threads = 1) {
   Scene& s = cachedScene(state.range(0), "");
   Model& m = *s.model;
-  const Effect* membrane = s.effectList().front();  // the element forces come first; this sheet has no cables
+  const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
+  // The element forces come first in the scene's list; this sheet has no cables.
+  const Effect* membrane = kernel == MembraneKernel::Batched ? s.effectList().front() : &perElement;
   ForceContext ctx;
   ctx.x = m.nodes.x.data();
   ctx.v = m.nodes.v.data();
   ctx.fint = m.nodes.fint.data();
   ctx.fext = m.nodes.fext.data();
+  ctx.threads = threads;
   for (auto _ : state) {
     ctx.minStableDt = 1e300;
     membrane->addForces(ctx);
@@ -76,6 +81,17 @@ void BM_MembraneKernel(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * m.membranes.count);
   state.counters["triangles"] = m.membranes.count;
+}
+
+void BM_MembraneKernel(benchmark::State& state) {
+  membraneKernel(state, MembraneKernel::Batched);
+}
+void BM_MembraneKernelPerElement(benchmark::State& state) {
+  membraneKernel(state, MembraneKernel::PerElement);
+}
+// Batched kernel on 2 threads (solver.threads: 2). Wall time: the CPU time counts the calling thread only.
+void BM_MembraneKernelThreads2(benchmark::State& state) {
+  membraneKernel(state, MembraneKernel::Batched, 2);
 }
 
 // The pressure effect alone (the scene's only load).
@@ -108,10 +124,16 @@ void BM_NodeSweep(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * m.membranes.count);
 }
 
-void runSteps(benchmark::State& state, const std::string& extra) {
+void runSteps(benchmark::State& state, const std::string& extra,
+              MembraneKernel kernel = MembraneKernel::Batched, int threads = 1) {
   Scene& s = cachedScene(state.range(0), extra);
   Model& m = *s.model;
-  CentralDifference cd(m, s.effectList(), s.constraints, s.time.integrator);
+  std::vector<const Effect*> effects = s.effectList();
+  const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
+  if (kernel == MembraneKernel::PerElement) effects.front() = &perElement;  // the scenes have no viscosity
+  CentralDifferenceSettings settings = s.time.integrator;
+  settings.threads = threads;
+  CentralDifference cd(m, effects, s.constraints, settings);
   for (auto _ : state) {
     cd.step(1e300, false);
     benchmark::ClobberMemory();
@@ -123,6 +145,12 @@ void runSteps(benchmark::State& state, const std::string& extra) {
 void BM_Step(benchmark::State& state) {
   runSteps(state, "");
 }
+void BM_StepPerElement(benchmark::State& state) {
+  runSteps(state, "", MembraneKernel::PerElement);
+}
+void BM_StepThreads2(benchmark::State& state) {
+  runSteps(state, "", MembraneKernel::Batched, 2);
+}
 void BM_StepWithViscosityAndGravity(benchmark::State& state) {
   runSteps(state,
            "  stiffness_damping: {beta: 1.0e-7}\n  bulk_viscosity: {b1: 0.06}\n  gravity: {acceleration: [0, "
@@ -132,7 +160,22 @@ void BM_StepWithViscosityAndGravity(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_MembraneKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneKernelPerElement)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PressureKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NodeSweep)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Step)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepPerElement)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneKernelThreads2)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(BM_StepThreads2)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 BENCHMARK(BM_StepWithViscosityAndGravity)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);

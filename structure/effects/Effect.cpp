@@ -7,7 +7,7 @@
 namespace fsi::structure {
 
 ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& effects, double time,
-                             double loadFactor, bool wantEnergy) {
+                             double loadFactor, bool wantEnergy, int threads) {
   std::fill(nodes.fint.begin(), nodes.fint.end(), 0.0);
   std::fill(nodes.fext.begin(), nodes.fext.end(), 0.0);
   ForceContext ctx;
@@ -18,6 +18,7 @@ ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& eff
   ctx.fint = nodes.fint.data();
   ctx.fext = nodes.fext.data();
   ctx.wantEnergy = wantEnergy;
+  ctx.threads = threads;
   for (const Effect* e : effects) e->addForces(ctx);
   return ctx;
 }

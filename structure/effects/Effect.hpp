@@ -20,6 +20,7 @@ struct ForceContext {
   bool wantEnergy = false;    ///< also sum the strain energy (only on monitoring steps)
   double minStableDt = std::numeric_limits<double>::infinity();  ///< reduced by every element effect
   double strainEnergy = 0;                                       ///< accumulated when wantEnergy
+  int threads = 1;  ///< threads an effect may use (effects/Threads.hpp); 1 = serial
 };
 
 class Effect {
@@ -34,6 +35,6 @@ struct Nodes;
 /// Zeroes the node force arrays and lets every effect add its forces at the nodes' current state.
 /// The returned context holds the smallest element stable step and (if asked) the strain energy.
 ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& effects, double time,
-                             double loadFactor, bool wantEnergy);
+                             double loadFactor, bool wantEnergy, int threads = 1);
 
 }  // namespace fsi::structure

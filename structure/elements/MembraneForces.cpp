@@ -2,7 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#ifdef FSI_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+#include "structure/effects/Threads.hpp"
+#include "structure/elements/MembraneBatch.hpp"
 #include "structure/elements/MembraneKinematics.hpp"
 
 namespace fsi::structure {
@@ -123,32 +130,124 @@ void membraneBlock(const MembraneTriangles& el, const MembraneBlock& blk, const 
   if constexpr (Energy) ctx.strainEnergy += energy;
 }
 
+// The batched kernel over the block's whole batches, the per-element one over the remainder.
+template <bool Wrinkling, bool Viscous, bool Energy>
+void batchedBlock(const MembraneTriangles& el, const MembraneBlock& blk, const MembraneViscosity& visc,
+                  ForceContext& ctx) {
+  MembraneBlock rest = blk;
+  rest.begin = membrane::membraneBatches<Wrinkling, Viscous, Energy>(el, blk, visc, ctx);
+  if (rest.begin < rest.end) membraneBlock<Wrinkling, Viscous, Energy>(el, rest, visc, ctx);
+}
+
 template <bool Wrinkling, bool Viscous>
 void dispatchEnergy(const MembraneTriangles& el, const MembraneBlock& b, const MembraneViscosity& v,
-                    ForceContext& ctx) {
-  if (ctx.wantEnergy) {
-    membraneBlock<Wrinkling, Viscous, true>(el, b, v, ctx);
+                    MembraneKernel kernel, ForceContext& ctx) {
+  if (kernel == MembraneKernel::Batched) {
+    ctx.wantEnergy ? batchedBlock<Wrinkling, Viscous, true>(el, b, v, ctx)
+                   : batchedBlock<Wrinkling, Viscous, false>(el, b, v, ctx);
   } else {
-    membraneBlock<Wrinkling, Viscous, false>(el, b, v, ctx);
+    ctx.wantEnergy ? membraneBlock<Wrinkling, Viscous, true>(el, b, v, ctx)
+                   : membraneBlock<Wrinkling, Viscous, false>(el, b, v, ctx);
+  }
+}
+
+// Elements [begin, end) on the calling thread, block by block (one branch per block and step, none per
+// element).
+void evaluateRange(const MembraneTriangles& el, const MembraneViscosity& visc, MembraneKernel kernel,
+                   int begin, int end, ForceContext& ctx) {
+  for (const MembraneBlock& b : el.blocks) {
+    MembraneBlock part = b;
+    part.begin = std::max(b.begin, begin);
+    part.end = std::min(b.end, end);
+    if (part.begin >= part.end) continue;
+    if (part.wrinkling) {
+      visc.enabled() ? dispatchEnergy<true, true>(el, part, visc, kernel, ctx)
+                     : dispatchEnergy<true, false>(el, part, visc, kernel, ctx);
+    } else {
+      visc.enabled() ? dispatchEnergy<false, true>(el, part, visc, kernel, ctx)
+                     : dispatchEnergy<false, false>(el, part, visc, kernel, ctx);
+    }
   }
 }
 
 }  // namespace
 
-MembraneForces::MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity)
-    : el_(elements), visc_(viscosity) {}
+MembraneForces::MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity,
+                               MembraneKernel kernel)
+    : el_(elements), visc_(viscosity), kernel_(kernel) {}
 
 void MembraneForces::addForces(ForceContext& ctx) const {
-  // One branch per material block and step; none per element.
-  for (const MembraneBlock& b : el_.blocks) {
-    if (b.wrinkling) {
-      visc_.enabled() ? dispatchEnergy<true, true>(el_, b, visc_, ctx)
-                      : dispatchEnergy<true, false>(el_, b, visc_, ctx);
-    } else {
-      visc_.enabled() ? dispatchEnergy<false, true>(el_, b, visc_, ctx)
-                      : dispatchEnergy<false, false>(el_, b, visc_, ctx);
+  if (ctx.threads > 1 && el_.count >= kMinParallelItems && threadsAvailable()) {
+    addForcesThreaded(ctx);
+  } else {
+    evaluateRange(el_, visc_, kernel_, 0, el_.count, ctx);
+  }
+}
+
+// Contiguous element ranges of equal size (whole batches), one per share; the elements are sorted by their
+// lowest node, so each range touches a narrow band of nodes, which is all its buffer clears and adds.
+void MembraneForces::partition(int shares) const {
+  shares_.assign(shares, {});
+  for (int s = 0; s < shares; ++s) {
+    ThreadShare& sh = shares_[s];
+    sh.begin = s == 0 ? 0 : shares_[s - 1].end;
+    sh.end = s == shares - 1 ? el_.count
+                             : int(long(el_.count) * (s + 1) / shares / membrane::kWidth * membrane::kWidth);
+    int lo = 0, hi = 0;
+    if (sh.begin < sh.end) {
+      const auto [mn, mx] =
+          std::minmax_element(el_.conn.begin() + 3 * sh.begin, el_.conn.begin() + 3 * sh.end);
+      lo = *mn, hi = *mx + 1;
+    }
+    sh.lo = 3 * lo;
+    sh.hi = 3 * hi;
+    if (s > 0) sh.f.assign(sh.hi, 0.0);  // share 0 adds into the context's array directly
+  }
+}
+
+// Each thread evaluates its share into its own buffer (share 0 straight into ctx.fint), then the threads add
+// the buffers into ctx.fint, each over its own slice of the dofs: no two threads ever write one address.
+// The sums at the nodes a share boundary crosses are added in another order than serially: round-off only.
+void MembraneForces::addForcesThreaded(ForceContext& ctx) const {
+#ifdef FSI_HAVE_OPENMP
+  const int shares = ctx.threads;
+  if (int(shares_.size()) != shares) partition(shares);
+  std::vector<double> dt(shares, ctx.minStableDt), energy(shares, 0.0);
+  int lo = std::numeric_limits<int>::max(), hi = 0;  // the dofs some buffer holds
+  for (int s = 1; s < shares; ++s) lo = std::min(lo, shares_[s].lo), hi = std::max(hi, shares_[s].hi);
+#pragma omp parallel num_threads(shares)
+  {
+    // The runtime may give fewer threads than asked (nested regions, OMP_THREAD_LIMIT): a thread then
+    // takes several shares.
+    const int nt = omp_get_num_threads();
+    for (int s = omp_get_thread_num(); s < shares; s += nt) {
+      ThreadShare& sh = shares_[s];
+      ForceContext local = ctx;
+      local.strainEnergy = 0.0;
+      if (s > 0) {
+        std::fill(sh.f.begin() + sh.lo, sh.f.begin() + sh.hi, 0.0);
+        local.fint = sh.f.data();
+      }
+      evaluateRange(el_, visc_, kernel_, sh.begin, sh.end, local);
+      dt[s] = local.minStableDt;
+      energy[s] = local.strainEnergy;
+    }
+#pragma omp barrier
+#pragma omp for schedule(static) nowait  // the end of the region joins the threads anyway
+    for (int d = lo; d < hi; ++d) {
+      double sum = 0.0;
+      for (int s = 1; s < shares; ++s)
+        if (d >= shares_[s].lo && d < shares_[s].hi) sum += shares_[s].f[d];
+      ctx.fint[d] += sum;
     }
   }
+  for (int s = 0; s < shares; ++s) {
+    ctx.minStableDt = std::min(ctx.minStableDt, dt[s]);
+    ctx.strainEnergy += energy[s];
+  }
+#else
+  evaluateRange(el_, visc_, kernel_, 0, el_.count, ctx);
+#endif
 }
 
 void MembraneForces::evaluate(const double* x, MembraneStressField& out) const {

@@ -12,6 +12,9 @@
 // Optional viscous stress (Rayleigh β and linear bulk viscosity b1) from Ė = sym(FᵀḞ).
 // The kinematics and the law live in MembraneKinematics.hpp (shared with the output and the stiffness
 // bounds); the rest of the element kind (mass, scaling, fields, diagnosis) in MembraneElement.
+// Evaluation: batches of lanes::kWidth triangles in vector lanes (MembraneBatch.hpp), the per-element loop
+// for each block's remainder and as the reference; with ForceContext::threads > 1, contiguous element shares
+// on OpenMP threads, each with its own force buffer (docs/PERFORMANCE.md "Threads").
 
 #include <cstdint>
 #include <vector>
@@ -34,9 +37,14 @@ struct MembraneStressField {
   std::vector<double> majorStrain;  ///< major principal Green–Lagrange strain
 };
 
+/// Which loop evaluates the triangles: batches of lanes::kWidth in vector lanes (MembraneBatch.hpp, the
+/// default) or one element at a time (the reference the batched kernel is tested and benchmarked against).
+enum class MembraneKernel { Batched, PerElement };
+
 class MembraneForces final : public Effect {
  public:
-  MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity);
+  MembraneForces(const MembraneTriangles& elements, MembraneViscosity viscosity,
+                 MembraneKernel kernel = MembraneKernel::Batched);
   std::string name() const override { return "membrane"; }
   void addForces(ForceContext& ctx) const override;
   /// Stresses, states and strains at configuration x (no forces); used at output times.
@@ -45,6 +53,18 @@ class MembraneForces final : public Effect {
  private:
   const MembraneTriangles& el_;
   MembraneViscosity visc_;
+  MembraneKernel kernel_;
+
+  // Threaded evaluation (ForceContext::threads > 1): one contiguous element range and one force buffer per
+  // share, made at the first threaded call and kept while the thread count stays.
+  struct ThreadShare {
+    int begin = 0, end = 0;  ///< elements
+    int lo = 0, hi = 0;      ///< dofs the elements touch
+    std::vector<double> f;   ///< forces of the share (dofs [lo, hi) used; share 0 uses the context's)
+  };
+  mutable std::vector<ThreadShare> shares_;
+  void partition(int shares) const;
+  void addForcesThreaded(ForceContext& ctx) const;
 };
 
 /// Stresses, states and strains of every triangle at configuration x (the output fields and stress probes).

@@ -5,6 +5,12 @@
 #include <limits>
 #include <set>
 
+#include "structure/effects/Threads.hpp"
+
+#ifdef FSI_HAVE_OPENMP
+#include <omp.h>
+#endif
+
 namespace fsi::structure {
 
 namespace {
@@ -13,6 +19,48 @@ double halfVelocityEnergy(const Nodes& N) {
   for (int i = 0; i < N.count; ++i)
     for (int k = 0; k < 3; ++k) ke += 0.5 * N.mass[i] * N.v[3 * i + k] * N.v[3 * i + k];
   return ke;
+}
+
+// The node sweep's energy sums (see CentralDifference::step).
+struct SweepSums {
+  double ke = 0, prod = 0, vv = 0, extOld = 0, intOld = 0, extNew = 0, intNew = 0;
+  void add(const SweepSums& o) {
+    ke += o.ke, prod += o.prod, vv += o.vv, extOld += o.extOld, intOld += o.intOld, extNew += o.extNew,
+        intNew += o.intNew;
+  }
+};
+struct SweepCoefficients {
+  double c1, c2, dtAvg, dtNext;
+};
+
+// v(n+½) and x(n+1) of nodes [begin, end), and their sums.
+void sweepNodes(int begin, int end, const SweepCoefficients& c, double* __restrict x, double* __restrict v,
+                const double* __restrict fi, const double* __restrict fe, const double* __restrict im,
+                const double* __restrict m, SweepSums& out) {
+  const double c1 = c.c1, c2 = c.c2, dtAvg = c.dtAvg, dtNext = c.dtNext;
+  double ke = 0, prod = 0, vv = 0, extOld = 0, intOld = 0, extNew = 0, intNew = 0;
+  for (int i = begin; i < end; ++i) {
+    double keNode = 0, prodNode = 0, vvNode = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int d = 3 * i + k;
+      const double vOld = v[d];
+      const double vNew = (c1 * vOld + dtAvg * im[d] * (fe[d] - fi[d])) * c2;
+      extOld += fe[d] * vOld;
+      intOld += fi[d] * vOld;
+      extNew += fe[d] * vNew;
+      intNew += fi[d] * vNew;
+      const double vMid = 0.5 * (vOld + vNew);
+      keNode += vMid * vMid;
+      prodNode += vOld * vNew;
+      vvNode += vNew * vNew;
+      v[d] = vNew;
+      x[d] += dtNext * vNew;
+    }
+    ke += 0.5 * m[i] * keNode;
+    prod += m[i] * prodNode;
+    vv += m[i] * vvNode;
+  }
+  out = {ke, prod, vv, extOld, intOld, extNew, intNew};
 }
 
 EnergyLedger ledgerFrom(double kinetic) {
@@ -53,14 +101,14 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
 double CentralDifference::recordInitialStrain() {
   // A separate evaluation: the steps' own force evaluations stay exactly those of a run without it (the
   // kernels that sum the energy may round differently).
-  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, true);
+  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, true, settings_.threads);
   ledger_.initialStrain = ctx.strainEnergy;
   ledger_.updateSupplied();
   return ctx.minStableDt;
 }
 
 double CentralDifference::computeForces(bool withEnergy) {
-  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, withEnergy);
+  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, withEnergy, settings_.threads);
   if (withEnergy) ledger_.strain = ctx.strainEnergy;
   stableDt_ = ctx.minStableDt;
   return ctx.minStableDt;
@@ -125,28 +173,29 @@ bool CentralDifference::step(double limitTime, bool monitor) {
 
   // One sweep: update, physical KE of the mid-step velocity, Σ m v(n−½)·v(n+½), Σ m v(n+½)², and the
   // forces' power at both half-step velocities (the two halves of this evaluation's work).
-  double ke = 0, prod = 0, vv = 0, extOld = 0, intOld = 0, extNew = 0, intNew = 0;
-  for (int i = 0; i < N.count; ++i) {
-    double keNode = 0, prodNode = 0, vvNode = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int d = 3 * i + k;
-      const double vOld = v[d];
-      const double vNew = (c1 * vOld + dtAvg * im[d] * (fe[d] - fi[d])) * c2;
-      extOld += fe[d] * vOld;
-      intOld += fi[d] * vOld;
-      extNew += fe[d] * vNew;
-      intNew += fi[d] * vNew;
-      const double vMid = 0.5 * (vOld + vNew);
-      keNode += vMid * vMid;
-      prodNode += vOld * vNew;
-      vvNode += vNew * vNew;
-      v[d] = vNew;
-      x[d] += dtNext * vNew;
+  const SweepCoefficients coef{c1, c2, dtAvg, dtNext};
+  SweepSums sums;
+#ifdef FSI_HAVE_OPENMP
+  const int threads = settings_.threads > 1 && N.count >= kMinParallelItems ? settings_.threads : 1;
+  if (threads > 1) {
+    // Contiguous node ranges, one per thread; their sums are added in range order, so a run is reproducible.
+    std::vector<SweepSums> part(threads);
+#pragma omp parallel num_threads(threads)
+    {
+      const int nt = omp_get_num_threads();
+      for (int t = omp_get_thread_num(); t < threads; t += nt)
+        sweepNodes(int(long(N.count) * t / threads), int(long(N.count) * (t + 1) / threads), coef, x, v, fi,
+                   fe, im, m, part[t]);
     }
-    ke += 0.5 * m[i] * keNode;
-    prod += m[i] * prodNode;
-    vv += m[i] * vvNode;
+    for (const SweepSums& p : part) sums.add(p);
+  } else {
+    sweepNodes(0, N.count, coef, x, v, fi, fe, im, m, sums);
   }
+#else
+  sweepNodes(0, N.count, coef, x, v, fi, fe, im, m, sums);
+#endif
+  double ke = sums.ke, prod = sums.prod, vv = sums.vv, extOld = sums.extOld, intOld = sums.intOld,
+         extNew = sums.extNew, intNew = sums.intNew;
 
   // Constrained dofs: replace the sweep's free velocity vCur by the constrained one in the sums, and book the
   // work of the support reaction R, defined by M(v(n+½) − v(n−½)) = Δ(f_ext − f_int − α M v̄ + R), in the

@@ -27,6 +27,7 @@ struct CentralDifferenceSettings {
   double fixedDt = 0;      ///< > 0: use this step and ignore the stability estimate (for studies/tests)
   double maxDt = 1e300;    ///< upper bound on the step
   double massDamping = 0;  ///< Rayleigh α [1/s]
+  int threads = 1;         ///< threads for the force kernels and the node sweep (scene key solver.threads)
 };
 
 class CentralDifference {

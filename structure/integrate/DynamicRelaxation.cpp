@@ -29,7 +29,7 @@ DynamicRelaxation::DynamicRelaxation(Model& model, std::vector<const Effect*> ef
 }
 
 void DynamicRelaxation::forces(double loadFactor) {
-  strain_ = evaluateEffects(model_.nodes, effects_, s_.loadTime, loadFactor, true).strainEnergy;
+  strain_ = evaluateEffects(model_.nodes, effects_, s_.loadTime, loadFactor, true, s_.threads).strainEnergy;
 }
 
 RelaxationResult DynamicRelaxation::run(const std::function<void(int, const RelaxationResult&)>& onIncrement,

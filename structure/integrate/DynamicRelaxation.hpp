@@ -36,6 +36,7 @@ struct RelaxationSettings {
   Damping damping = Damping::Kinetic;
   FictitiousMassRule mass = FictitiousMassRule::Gerschgorin;
   Coefficient coefficient = Coefficient::Underwood;
+  int threads = 1;          ///< threads for the force kernels (the relaxation's own node loops stay serial)
   double lambda = 0;        ///< mass scale; 0 = the rule's default (defaultLambda)
   bool backstep = true;     ///< kinetic damping: restart from the estimated energy peak
   double tolerance = 1e-3;  ///< ε

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "structure/effects/Threads.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
 #include "structure/scene/JoinNames.hpp"
 
@@ -15,7 +16,13 @@ SolverControl readSolver(const YamlMap& top) {
   SolverControl solver;
   if (top.has("solver")) {
     YamlMap sv = top.map("solver");
-    const std::string type = sv.choice("type", {"explicit_dynamics", "dynamic_relaxation"});
+    const std::string type =
+        sv.choice("type", {"explicit_dynamics", "dynamic_relaxation"}, "explicit_dynamics");
+    solver.threads = int(sv.integer("threads", 1, {1, 1024}));
+    if (solver.threads > 1 && !threadsAvailable())
+      sv.failAt("threads",
+                "this build has no OpenMP (built with FSI_OPENMP=OFF or without compiler support): "
+                "only 1 is possible");
     if (type == "dynamic_relaxation") {
       SolverControl& sc = solver;
       RelaxationSettings& rs = sc.relaxation;
@@ -40,7 +47,8 @@ SolverControl readSolver(const YamlMap& top) {
       rs.loadTime = sv.number("load_time", 0.0);
       rs.autoMass = sv.boolean("auto_mass", true);
       rs.updateMasses = sv.boolean("update_masses", false);
-      sv.finish({"type", "damping", "mass", "coefficient", "lambda", "backstep", "tolerance",
+      rs.threads = solver.threads;
+      sv.finish({"type", "threads", "damping", "mass", "coefficient", "lambda", "backstep", "tolerance",
                  "max_iterations", "increments", "load_time", "auto_mass", "update_masses"});
       if (rs.damping == RelaxationSettings::Damping::Kinetic)
         sc.method = rs.mass == FictitiousMassRule::StressBound   ? "KDR1"
@@ -50,7 +58,7 @@ SolverControl readSolver(const YamlMap& top) {
         sc.method = std::string(rs.mass == FictitiousMassRule::RezaiePajand ? "m" : "o") +
                     (rs.coefficient == RelaxationSettings::Coefficient::RezaiePajand ? "dDR" : "DR");
     } else {
-      sv.finish({"type"});
+      sv.finish({"type", "threads"});
     }
   }
   return solver;

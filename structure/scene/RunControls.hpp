@@ -28,6 +28,7 @@ struct SolverControl {
   Type type = Type::ExplicitDynamics;
   RelaxationSettings relaxation;
   std::string method;  ///< label of the DR variant (KDR, KDR1, oDR, mdDR, ...)
+  int threads = 1;     ///< solver.threads: threads for the force kernels and node sweeps
 };
 
 struct OutputControl {

@@ -52,6 +52,7 @@ SceneSpec readSceneSpec(const YamlMap& top, const std::string& fileName, const s
   spec.meshes = readMeshes(top, spec.materials, dir);
   spec.solver = readSolver(top);
   spec.time = readTime(top, spec.relaxation());
+  spec.time.integrator.threads = spec.solver.threads;
   spec.output = readOutput(top);
   return spec;
 }

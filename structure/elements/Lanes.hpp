@@ -1,0 +1,157 @@
+#pragma once
+// Lanes: a small fixed-width vector of doubles for the batched element kernels (one element per lane).
+//
+// Built on the GCC/Clang vector extension, so the same source is portable: with AVX (FSI_NATIVE=ON on this
+// machine) 4 lanes in one ymm register; without it (the portable SSE2 build) 2 lanes in one xmm register. The
+// kernels stay branch-free: a per-lane condition is a mask (all bits set where true) and a selection is a
+// blend (`select`), never a jump.
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#if defined(__AVX__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace fsi::structure::lanes {
+
+/// Elements per batch: 4 doubles, one AVX register (the gather and scatter below are written for it; wider
+/// AVX-512 lanes were not tried: this Zen core runs them as two 256-bit halves). Without AVX, 2 (one SSE2
+/// register): a 4-lane vector there would be passed between functions in memory (GCC's -Wpsabi).
+#if defined(__AVX__)
+constexpr int kWidth = 4;
+#else
+constexpr int kWidth = 2;
+#endif
+
+typedef double Vd __attribute__((vector_size(kWidth * sizeof(double))));
+typedef std::int64_t Vm __attribute__((vector_size(kWidth * sizeof(double))));  ///< lane mask (0 or ~0)
+
+inline Vd splat(double s) {
+  Vd v{};
+  for (int l = 0; l < kWidth; ++l) v[l] = s;
+  return v;
+}
+
+/// kWidth consecutive doubles from p (no alignment needed).
+inline Vd load(const double* p) {
+  Vd v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// Per-lane blend: a where the mask is set, b elsewhere.
+inline Vd select(Vm mask, Vd a, Vd b) {
+  return mask ? a : b;
+}
+
+/// std::max's order: a unless a < b.
+inline Vd max(Vd a, Vd b) {
+  return a < b ? b : a;
+}
+/// std::min's order: a unless b < a.
+inline Vd min(Vd a, Vd b) {
+  return b < a ? b : a;
+}
+inline Vd abs(Vd a) {
+  return a < 0.0 ? -a : a;
+}
+
+/// Square root of every lane (the hardware instruction where there is one; the scalar call otherwise).
+inline Vd sqrt(Vd a) {
+#if defined(__AVX__)
+  static_assert(kWidth == 4, "one ymm register per lane vector");
+  return Vd(_mm256_sqrt_pd(__m256d(a)));
+#elif defined(__SSE2__)
+  static_assert(kWidth == 2, "one xmm register per lane vector");
+  return Vd(_mm_sqrt_pd(__m128d(a)));
+#else
+  Vd r{};
+  for (int l = 0; l < kWidth; ++l) r[l] = std::sqrt(a[l]);
+  return r;
+#endif
+}
+
+/// Gathers the coordinates of kWidth nodes (xyz-interleaved array x, node indices idx) into lane vectors
+/// out[0..2] = x, y, z of every lane. The AVX version builds the vectors in registers (through memory the
+/// 8-byte writes and the 32-byte read would stall the store forwarding).
+inline void gather3(const double* __restrict x, const int* idx, Vd out[3]) {
+#if defined(__AVX__)
+  const double* p0 = x + 3 * idx[0];
+  const double* p1 = x + 3 * idx[1];
+  const double* p2 = x + 3 * idx[2];
+  const double* p3 = x + 3 * idx[3];
+  const __m256d a = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p0)), _mm_loadu_pd(p2), 1);
+  const __m256d b = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p1)), _mm_loadu_pd(p3), 1);
+  out[0] = Vd(_mm256_unpacklo_pd(a, b));  // x0 x1 x2 x3
+  out[1] = Vd(_mm256_unpackhi_pd(a, b));  // y0 y1 y2 y3
+  const __m128d z01 = _mm_loadh_pd(_mm_load_sd(p0 + 2), p1 + 2);
+  const __m128d z23 = _mm_loadh_pd(_mm_load_sd(p2 + 2), p3 + 2);
+  out[2] = Vd(_mm256_insertf128_pd(_mm256_castpd128_pd256(z01), z23, 1));
+#else
+  // Through an array: GCC 12 takes lane-by-lane writes into a vector for reads of an uninitialised one.
+  for (int i = 0; i < 3; ++i) {
+    double t[kWidth];
+    for (int l = 0; l < kWidth; ++l) t[l] = x[3 * idx[l] + i];
+    out[i] = load(t);
+  }
+#endif
+}
+
+/// Adds lane l of in[0..2] (x, y, z) to node idx[l] of the xyz-interleaved array f, lane after lane (lanes
+/// may name the same node).
+inline void scatterAdd3(double* __restrict f, const int* idx, const Vd in[3]) {
+#if defined(__AVX__)
+  const __m256d a = _mm256_unpacklo_pd(__m256d(in[0]), __m256d(in[1]));  // x0 y0 x2 y2
+  const __m256d b = _mm256_unpackhi_pd(__m256d(in[0]), __m256d(in[1]));  // x1 y1 x3 y3
+  const __m128d xy[4] = {_mm256_castpd256_pd128(a), _mm256_castpd256_pd128(b), _mm256_extractf128_pd(a, 1),
+                         _mm256_extractf128_pd(b, 1)};
+  const __m128d zlo = _mm256_castpd256_pd128(__m256d(in[2])), zhi = _mm256_extractf128_pd(__m256d(in[2]), 1);
+  const double z[4] = {_mm_cvtsd_f64(zlo), _mm_cvtsd_f64(_mm_unpackhi_pd(zlo, zlo)), _mm_cvtsd_f64(zhi),
+                       _mm_cvtsd_f64(_mm_unpackhi_pd(zhi, zhi))};
+  for (int l = 0; l < 4; ++l) {
+    double* q = f + 3 * idx[l];
+    _mm_storeu_pd(q, _mm_add_pd(_mm_loadu_pd(q), xy[l]));
+    q[2] += z[l];
+  }
+#else
+  for (int l = 0; l < kWidth; ++l)
+    for (int i = 0; i < 3; ++i) f[3 * idx[l] + i] += in[i][l];
+#endif
+}
+
+/// Loads kWidth records of n doubles each (record l at p + n l) as n lane vectors: out[j][l] = p[n l + j].
+template <int n>
+inline void loadRecords(const double* __restrict p, Vd out[n]) {
+#if defined(__AVX__)
+  if constexpr (n == 4) {
+    const __m256d r0 = _mm256_loadu_pd(p), r1 = _mm256_loadu_pd(p + 4), r2 = _mm256_loadu_pd(p + 8),
+                  r3 = _mm256_loadu_pd(p + 12);
+    const __m256d t0 = _mm256_unpacklo_pd(r0, r1),
+                  t1 = _mm256_unpackhi_pd(r0, r1);  // a0 a1 c0 c1, b0 b1 d0 d1
+    const __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+    out[0] = Vd(_mm256_permute2f128_pd(t0, t2, 0x20));
+    out[1] = Vd(_mm256_permute2f128_pd(t1, t3, 0x20));
+    out[2] = Vd(_mm256_permute2f128_pd(t0, t2, 0x31));
+    out[3] = Vd(_mm256_permute2f128_pd(t1, t3, 0x31));
+    return;
+  }
+#endif
+  for (int j = 0; j < n; ++j) {
+    double t[kWidth];
+    for (int l = 0; l < kWidth; ++l) t[l] = p[n * l + j];
+    out[j] = load(t);
+  }
+}
+
+/// Sum of the lanes (the order is fixed, so a batched sum is reproducible).
+inline double sum(Vd a) {
+  double s = 0.0;
+  for (int l = 0; l < kWidth; ++l) s += a[l];
+  return s;
+}
+
+}  // namespace fsi::structure::lanes

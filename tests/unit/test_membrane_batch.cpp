@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "MembraneEvaluation.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/material/WrinklingMembrane.hpp"
 #include "structure/model/Model.hpp"
@@ -76,26 +77,10 @@ Model randomModel(const std::vector<int>& counts, const std::vector<bool>& wrink
   return m;
 }
 
-struct Result {
-  std::vector<double> f;
-  double energy = 0, dt = 0;
-};
+using Result = test::MembraneEvaluation;
 
 Result evaluate(const Model& m, const ElementDamping& damping, MembraneKernel kernel, double dtStart) {
-  Result r;
-  r.f.assign(3 * m.nodes.count, 0.0);
-  std::vector<double> fext(r.f.size(), 0.0);
-  ForceContext ctx;
-  ctx.x = m.nodes.x.data();
-  ctx.v = m.nodes.v.data();
-  ctx.fint = r.f.data();
-  ctx.fext = fext.data();
-  ctx.wantEnergy = true;
-  ctx.minStableDt = dtStart;
-  MembraneForces(m.membranes, damping, kernel).addForces(ctx);
-  r.energy = ctx.strainEnergy;
-  r.dt = ctx.minStableDt;
-  return r;
+  return test::evaluateMembranes(m, MembraneForces(m.membranes, damping, kernel), 1, dtStart);
 }
 
 // Largest force difference relative to the largest reference force (the nodal sums of neighbouring

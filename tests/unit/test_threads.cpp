@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "MembraneEvaluation.hpp"
 #include "TestScenes.hpp"
 #include "structure/effects/Threads.hpp"
 #include "structure/elements/MembraneForces.hpp"
@@ -49,26 +50,10 @@ time: {{end: 1.0}}
   return s;
 }
 
-struct Forces {
-  std::vector<double> f;
-  double energy = 0, dt = 0;
-};
+using Forces = test::MembraneEvaluation;
 
 Forces evaluate(const Model& m, const MembraneForces& mf, int threads) {
-  Forces r;
-  r.f.assign(3 * m.nodes.count, 0.0);
-  std::vector<double> fext(r.f.size(), 0.0);
-  ForceContext ctx;
-  ctx.x = m.nodes.x.data();
-  ctx.v = m.nodes.v.data();
-  ctx.fint = r.f.data();
-  ctx.fext = fext.data();
-  ctx.wantEnergy = true;
-  ctx.threads = threads;
-  mf.addForces(ctx);
-  r.energy = ctx.strainEnergy;
-  r.dt = ctx.minStableDt;
-  return r;
+  return test::evaluateMembranes(m, mf, threads);
 }
 
 double maxRelDiff(const std::vector<double>& a, const std::vector<double>& ref) {

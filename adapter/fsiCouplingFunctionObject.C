@@ -212,6 +212,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));
       opt.gapCorrection = o.flag("gapCorrection");
+      opt.keepSide = o.flag("keepSide");
       {
         const std::string& d = o.text("defectCorrection");  // the option table allows only these
         opt.defectCorrection = d == "on"    ? fsi::coupling::ProjectionOptions::Defect::On
@@ -229,7 +230,10 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
              << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass())
              << " L2 projection (level " << r.quadratureLevel << (r.defectCorrection ? "+defect" : "")
-             << "), largest gap " << r.maxGap << " m, set up in " << r.setupSeconds << " s" << endl;
+             << "), largest gap " << r.maxGap << " m";
+        if (r.residedPoints > 0)
+          Info << ", " << r.residedPoints << " quadrature points moved to their own side of the skin";
+        Info << ", set up in " << r.setupSeconds << " s" << endl;
         if (!r.allMapped()) {
           FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
                                        << ip->name() << " are farther than mapTolerance " << opt.tolerance
@@ -606,9 +610,11 @@ bool fsiCoupling::execute() {
                            << ": the structure became unstable: " << e.what() << nl
                            << "The structure's last stable state (start of the window) is in "
                            << time_.globalPath() / "structure" / "last_stable_state.h5"
-                           << " and the last frame of structure/results.h5. A light, soft structure "
-                           << "strongly coupled to the flow may need a smaller step: lower `time: {safety: "
-                           << "...}` in the scene or raise `subcycles`." << exit(FatalError);
+                           << " and the last frame of structure/results.h5. "
+                           << fsi::coupling::unstableStructureAdvice(implicit_
+                                                                         ? fsi::coupling::SchemeKind::Implicit
+                                                                         : fsi::coupling::SchemeKind::Staggered)
+                           << exit(FatalError);
     } catch (const std::exception& e) {
       FatalErrorInFunction << "fsiCoupling: t = " << time_.value() << " s: " << e.what() << exit(FatalError);
     }

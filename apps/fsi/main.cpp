@@ -183,7 +183,8 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
 // A negative tolerance selects the default (0.25 x mean edge length).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
                     const std::string& variant, const std::string& quadratureLevel,
-                    const std::vector<std::string>& sets, bool gapCorrection, const std::string& defect) {
+                    const std::vector<std::string>& sets, bool gapCorrection, const std::string& defect,
+                    bool keepSide) {
   // No run to stop cleanly here: Ctrl-C ends the program as usual (and one pressed during start-up does).
   std::signal(SIGINT, SIG_DFL);
   if (gStop.requested()) return 130;
@@ -214,6 +215,7 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
   const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterfaceOrScene(dst, sets);
   opt.tolerance = tolerance;
   opt.gapCorrection = gapCorrection;
+  opt.keepSide = keepSide;
   if (defect == "auto")
     opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Auto;
   else if (defect == "on")
@@ -320,6 +322,7 @@ int main(int argc, char** argv) {
   std::string mapLevel = "auto";
   std::vector<std::string> mapSets;
   bool mapNoGapCorrection = false;
+  bool mapNoKeepSide = false;
   std::string mapDefect = "auto";
   mapCheck
       ->add_option(
@@ -339,6 +342,9 @@ int main(int argc, char** argv) {
                        "meshes' edge-length ratio) or 1..64");
   mapCheck->add_flag("--no-gap-correction", mapNoGapCorrection,
                      "project without carrying fields across the gap of curved meshes (docs/PROJECTION.md)");
+  mapCheck->add_flag("--no-keep-side", mapNoKeepSide,
+                     "let points of a body wetted from one side map onto a source facing the other way "
+                     "(the opposite skin of a thin edge; docs/PROJECTION.md)");
   mapCheck->add_option("--defect-correction", mapDefect,
                        "auto (default: on when the target is 1.5x coarser than the source), on or off "
                        "(docs/PROJECTION.md)");
@@ -391,7 +397,7 @@ int main(int argc, char** argv) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))
         throw fsi::InputError(fmt::format("--tolerance {}: must be a finite distance >= 0", mapTolerance));
       return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
-                             mapVariant, mapLevel, mapSets, !mapNoGapCorrection, mapDefect);
+                             mapVariant, mapLevel, mapSets, !mapNoGapCorrection, mapDefect, !mapNoKeepSide);
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
     if (*generate) return generateCommand(genScene, genOut, genSets);

@@ -89,6 +89,12 @@ SETTINGS = {
     "trailing_edge_tape": (["no", "yes"], "no", None, None,
                            "coupled yes: a tape (cables) along the canopy's trailing edge, so that a brake line "
                            "draws the edge down over the span instead of denting the skin (docs/PARAFOIL.md)"),
+    "keep_side": (["no", "yes"], "no", None, None,
+                  "coupled yes: map each fluid point onto the structure's skin facing its own way (the "
+                  "projection's keepSide; at the thin trailing edge the closest skin can be the other one)"),
+    "gap_correction": (["no", "yes"], "no", None, None,
+                       "coupled yes: the projection's gapCorrection (carry the displacement across the gap "
+                       "between the fluid's and the structure's skins; docs/PROJECTION.md)"),
     "tolerance": ("float", 1e-3, 1e-12, 0.5, "implicit: relative interface-displacement residual of a step"),
     "max_iterations": ("int", 20, 1, 1000, "implicit: iterations per step at most"),
     "subcycles": ("int", 1, 1, 100000, "structural steps per fluid step at least"),
@@ -167,7 +173,7 @@ def read_settings(path):
                              "the structure's own surface (remove stl_bulge)")
     else:
         # The structure's keys mean nothing to a rigid wing: say so rather than run without them.
-        for key in ("brake_right", "trailing_edge_tape", "equilibrium_start"):
+        for key in ("brake_right", "trailing_edge_tape", "equilibrium_start", "keep_side", "gap_correction"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} needs coupled yes (the rigid wing has no structure)")
     return values
@@ -470,7 +476,8 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
     scene "structure-coupled.yaml";
     scheme {s['scheme']};{implicit}
     {mode}
-    loadRelaxation {s['load_relaxation']:.9g};
+    loadRelaxation {s['load_relaxation']:.9g}; keepSide {s['keep_side']};
+    gapCorrection {s['gap_correction']};
   }}
 """
     def control_dict(libs, fsi, steps, end, every):

@@ -214,13 +214,17 @@ double SurfaceSearch::distance2(int slot, const std::array<double, 3>& x, std::a
   return triangleDistance2(vertices_[std::size_t(slot)].data(), x.data(), bary);
 }
 
-SurfacePoint SurfaceSearch::closest(const std::array<double, 3>& x, int hint) const {
+template <class Accept>
+SurfacePoint SurfaceSearch::search(const std::array<double, 3>& x, int hint, Accept&& accept) const {
   double best2 = HUGE_VAL;
   int bestSlot = -1;
   Vec3 bestBary{}, bary;
   if (hint >= 0 && hint < fan_.numTriangles()) {
-    bestSlot = slotOf_[std::size_t(hint)];
-    best2 = distance2(bestSlot, x, bestBary);
+    const int slot = slotOf_[std::size_t(hint)];
+    if (accept(slot)) {
+      bestSlot = slot;
+      best2 = distance2(bestSlot, x, bestBary);
+    }
   }
   struct Entry {
     int node;
@@ -235,6 +239,7 @@ SurfacePoint SurfaceSearch::closest(const std::array<double, 3>& x, int hint) co
     const BoxNode& n = nodes_[std::size_t(e.node)];
     if (n.count > 0) {
       for (int s = n.first; s < n.first + n.count; ++s) {
+        if (!accept(s)) continue;
         const double d2 = distance2(s, x, bary);
         if (d2 < best2) {
           best2 = d2;
@@ -257,6 +262,7 @@ SurfacePoint SurfaceSearch::closest(const std::array<double, 3>& x, int hint) co
     }
   }
   SurfacePoint p;
+  if (bestSlot < 0) return p;  // nothing accepted: unmapped, at infinite distance
   p.triangle = order_[std::size_t(bestSlot)];
   p.face = fan_.triangleFace[std::size_t(p.triangle)];
   p.bary = bestBary;
@@ -264,6 +270,30 @@ SurfacePoint SurfaceSearch::closest(const std::array<double, 3>& x, int hint) co
   p.distance = std::sqrt(best2);
   p.mapped = p.distance <= tolerance_;
   return p;
+}
+
+SurfacePoint SurfaceSearch::closest(const std::array<double, 3>& x, int hint) const {
+  return search(x, hint, [](int) { return true; });
+}
+
+std::array<double, 3> SurfaceSearch::normal(int t) const {
+  return slotNormal(slotOf_[std::size_t(t)]);
+}
+
+std::array<double, 3> SurfaceSearch::slotNormal(int slot) const {
+  const double* v = vertices_[std::size_t(slot)].data();
+  const Vec3 a = sub(v + 3, v), b = sub(v + 6, v);
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+SurfacePoint SurfaceSearch::closestFacing(const std::array<double, 3>& x, const std::array<double, 3>& facing,
+                                          int hint) const {
+  // Round-off must not make a face at right angles to `facing` count as facing that way.
+  const double f = std::sqrt(dot(facing, facing)) * kPerpendicular;
+  return search(x, hint, [&](int slot) {
+    const Vec3 n = slotNormal(slot);
+    return dot(n, facing) > f * std::sqrt(dot(n, n));
+  });
 }
 
 }  // namespace fsi::coupling

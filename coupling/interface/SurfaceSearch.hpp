@@ -55,6 +55,11 @@ struct FanTriangulation {
   double area(int t) const;
 };
 
+/// Cosine below which two faces count as at right angles (neither facing nor opposing each other) in
+/// SurfaceSearch::closestFacing and the projection's side rule: far above round-off, far below any real
+/// angle between a skin and the mesh that follows it.
+inline constexpr double kPerpendicular = 1e-9;
+
 /// Result of a closest-point query.
 struct SurfacePoint {
   int face = -1;                  ///< source face containing the closest point
@@ -76,6 +81,14 @@ class SurfaceSearch {
   /// mapped = false). `hint` is a triangle expected to be close (e.g. the previous query's): it only
   /// tightens the initial bound, the result does not depend on it.
   SurfacePoint closest(const std::array<double, 3>& x, int hint = -1) const;
+  /// The closest point among the triangles that face the way of `facing` (normal · facing > 0, the normal
+  /// by the face's vertex order, cosine above kPerpendicular): the point on the same side of a thin closed
+  /// body (a trailing-edge wedge, whose two skins are closer to each other than to a non-matching mesh of the
+  /// same skin). When no triangle faces that way, face = triangle = -1, distance = ∞ and mapped = false.
+  SurfacePoint closestFacing(const std::array<double, 3>& x, const std::array<double, 3>& facing,
+                             int hint = -1) const;
+  /// The (unnormalised, area-weighted) normal of fan triangle t, by its corner order.
+  std::array<double, 3> normal(int t) const;
 
   const FanTriangulation& fan() const { return fan_; }
   double tolerance() const { return tolerance_; }
@@ -90,6 +103,10 @@ class SurfaceSearch {
   void build(int self, int begin, int end, const std::vector<std::array<double, 3>>& centroids);
   // Exact squared distance from x to slot s (triangle order_[s]); fills the barycentric coordinates.
   double distance2(int slot, const std::array<double, 3>& x, std::array<double, 3>& bary) const;
+  std::array<double, 3> slotNormal(int slot) const;
+  // The search of closest() over the slots `accept` lets through.
+  template <class Accept>
+  SurfacePoint search(const std::array<double, 3>& x, int hint, Accept&& accept) const;
 
   FanTriangulation fan_;
   double tolerance_;

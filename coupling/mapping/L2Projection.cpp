@@ -163,6 +163,17 @@ class GapGradient {
     for (int f = 0; f < mesh.numFaces(); ++f)
       for (int k = 0; k < mesh.faceSize(f); ++k)
         nodeFaces_[std::size_t(fill[std::size_t(mesh.face(f)[k])]++)] = f;
+    // Newell's normal of every face (any polygon), for keeping a patch on its own side of a fold.
+    faceNormal_.resize(std::size_t(mesh.numFaces()));
+    for (int f = 0; f < mesh.numFaces(); ++f) {
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      for (int k = 0; k < mesh.faceSize(f); ++k) {
+        const Eigen::Vector3d a(mesh.points[std::size_t(mesh.face(f)[k])].data()),
+            b(mesh.points[std::size_t(mesh.face(f)[(k + 1) % mesh.faceSize(f)])].data());
+        n += a.cross(b);
+      }
+      faceNormal_[std::size_t(f)] = n;
+    }
   }
 
   // Builds the stencils of the triangles flagged in `used`, in triangle order.
@@ -201,7 +212,11 @@ class GapGradient {
     const Eigen::Vector3d p0(fan_.corners[std::size_t(c[0])].data()),
         p1(fan_.corners[std::size_t(c[1])].data()), p2(fan_.corners[std::size_t(c[2])].data());
     const Eigen::Vector3d centre = (p0 + p1 + p2) / 3.0;
-    // Rings of faces around the triangle until the patch reaches minRadius_ (at least one ring).
+    const Eigen::Vector3d facing = (p1 - p0).cross(p2 - p0);
+    // Rings of faces around the triangle until the patch reaches minRadius_ (at least one ring). Only faces
+    // on the triangle's own side of a fold (normals less than 90° apart) join: at a trailing edge the other
+    // skin is a different surface, and a field (the displacement of a skin that bulges while the other
+    // flattens) need not be one smooth function across the edge.
     std::size_t done = 0;
     for (int ring = 0; ring < kMaxRings && patch_.size() < kMaxPatch; ++ring) {
       const std::size_t count = patch_.size();
@@ -209,6 +224,8 @@ class GapGradient {
         const int n = patch_[a];
         for (int p = nodeFaceStart_[std::size_t(n)]; p < nodeFaceStart_[std::size_t(n) + 1]; ++p) {
           const int f = nodeFaces_[std::size_t(p)];
+          const Eigen::Vector3d& nf = faceNormal_[std::size_t(f)];
+          if (!(nf.dot(facing) > kPerpendicular * nf.norm() * facing.norm())) continue;
           for (int k = 0; k < mesh_.faceSize(f); ++k) addNode(mesh_.face(f)[k]);
         }
       }
@@ -275,6 +292,7 @@ class GapGradient {
   const FanTriangulation& fan_;
   double minRadius_;
   std::vector<int> start_, mark_, nodeFaceStart_, nodeFaces_, patch_;
+  std::vector<Eigen::Vector3d> faceNormal_;
   std::vector<Entry> entries_;
 };
 
@@ -283,6 +301,82 @@ L2Projection::SparseRows fromCsr(int rows, int cols, const std::vector<int>& out
   const Eigen::Map<const L2Projection::SparseRows> map(rows, cols, long(values.size()), outer.data(),
                                                        inner.data(), values.data());
   return L2Projection::SparseRows(map);
+}
+
+double distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                   (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// Unnormalised normal of fan triangle t (by its corner order).
+Eigen::Vector3d fanNormal(const FanTriangulation& fan, int t) {
+  const auto& c = fan.triangles[std::size_t(t)];
+  const Eigen::Vector3d p0(fan.corners[std::size_t(c[0])].data()), p1(fan.corners[std::size_t(c[1])].data()),
+      p2(fan.corners[std::size_t(c[2])].data());
+  return (p1 - p0).cross(p2 - p0);
+}
+
+// ProjectionOptions::keepSide. The sign of n_target · n_source over the mapped points, weighted by their
+// area, tells how the two meshes' orientations relate (OpenFOAM's patch normals point into the body, a
+// structure's skin may point out: −1 then) and whether the interface is wetted from one side. If it is, the
+// points of the minority sign sit where the closest source triangle belongs to the other side of the body
+// (the two skins of a trailing edge meet at a smaller angle than the meshes' gap resolves); each is searched
+// again among the triangles facing its own way. `gap` (x − P(x)) is updated when it is kept (non-empty).
+void keepSides(const SurfaceSearch& search, const FanTriangulation& tf, const std::vector<QuadPoint>& qp,
+               std::vector<int>& srcTri, std::vector<std::array<double, 3>>& srcBary,
+               std::vector<std::array<double, 3>>& gap, ProjectionReport& report) {
+  const long nq = long(qp.size());
+  std::vector<signed char> sign(std::size_t(nq), 0);
+  double positive = 0.0, negative = 0.0;
+  for (long q = 0; q < nq; ++q) {
+    const int s = srcTri[std::size_t(q)];
+    if (s < 0) continue;
+    const Eigen::Vector3d ns(search.normal(s).data()), nt = fanNormal(tf, qp[std::size_t(q)].triangle);
+    // Faces at right angles (a skin against an end cap) have no side: their cosine is round-off.
+    const double d = nt.dot(ns), scale = kPerpendicular * nt.norm() * ns.norm();
+    if (d > scale) {
+      sign[std::size_t(q)] = 1;
+      positive += qp[std::size_t(q)].weight;
+    } else if (d < -scale) {
+      sign[std::size_t(q)] = -1;
+      negative += qp[std::size_t(q)].weight;
+    }
+  }
+  const double total = positive + negative;
+  if (!(total > 0.0)) return;
+  report.facingShare = std::max(positive, negative) / total;
+  report.oneSided = report.facingShare >= kOneSidedShare;
+  if (!report.oneSided) return;
+  const signed char majority = positive >= negative ? 1 : -1;
+  // The meshes' own gap scale: the largest distance of a point that faces the right way. A point whose own
+  // side is farther than that is not at a thin edge but on a face that is itself turned over (snapped
+  // faces at a sharp corner can be): moving it would tear it from the surface it belongs to.
+  double ownGap = 0.0;
+  for (long q = 0; q < nq; ++q) {
+    if (sign[std::size_t(q)] != majority) continue;
+    const QuadPoint& p = qp[std::size_t(q)];
+    const std::array<double, 3> x = tf.position(p.triangle, p.bary);
+    ownGap =
+        std::max(ownGap, distance(x, search.fan().position(srcTri[std::size_t(q)], srcBary[std::size_t(q)])));
+  }
+  for (long q = 0; q < nq; ++q) {
+    if (sign[std::size_t(q)] != -majority) continue;
+    const QuadPoint& p = qp[std::size_t(q)];
+    const Eigen::Vector3d facing = double(majority) * fanNormal(tf, p.triangle);
+    const std::array<double, 3> x = tf.position(p.triangle, p.bary);
+    const SurfacePoint r = search.closestFacing(x, {facing.x(), facing.y(), facing.z()});
+    // Beyond the tolerance or the meshes' gap (or no triangle facing that way): keep the closest one.
+    if (!r.mapped || r.distance > ownGap) {
+      ++report.turnedPoints;
+      continue;
+    }
+    srcTri[std::size_t(q)] = r.triangle;
+    srcBary[std::size_t(q)] = r.bary;
+    if (!gap.empty()) gap[std::size_t(q)] = {x[0] - r.point[0], x[1] - r.point[1], x[2] - r.point[2]};
+    report.maxGap = std::max(report.maxGap, r.distance);
+    report.maxResidedGap = std::max(report.maxResidedGap, r.distance);
+    ++report.residedPoints;
+  }
 }
 
 }  // namespace
@@ -331,6 +425,7 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
       ++report_.unmappedQuadraturePoints;
     }
   }
+  if (options.keepSide) keepSides(search, tf, qp, srcTri, srcBary, gap, report_);
   report_.searchSeconds = secondsSince(t0);
 
   t0 = Clock::now();

@@ -82,7 +82,18 @@ struct ProjectionOptions {
   /// exact (so force and moment), Hᵀ' = 2Hᵀ − Hᵀ Pᵀ Hᵀ stays smooth. Auto: on when the target's mean edge is
   /// at least kDefectRatio × the source's and P maps every source node. See docs/PROJECTION.md.
   enum class Defect { Off, On, Auto } defectCorrection = Defect::Auto;
+  /// Keep every target point on its own side of a thin body. Where the fluid wets the interface from one
+  /// side only (a closed canopy: at least kOneSidedShare of the target's area finds its closest source
+  /// triangle facing one consistent way), a point whose closest source triangle faces the other way — at a
+  /// trailing-edge wedge thinner than the meshes' gap, the opposite skin — is mapped to the closest source
+  /// triangle facing its own way instead. Surfaces wetted from both sides (a baffle, a sail) are left
+  /// alone. See docs/PROJECTION.md ("Thin edges").
+  bool keepSide = true;
 };
+
+/// Share of the target's area that must see the source facing one way for the interface to count as wetted
+/// from one side (ProjectionOptions::keepSide). A membrane wetted from both sides gives about one half.
+inline constexpr double kOneSidedShare = 0.9;
 
 inline constexpr double kDefectRatio = 1.5;
 
@@ -113,6 +124,17 @@ struct ProjectionReport {
   long gapStencilEntries =
       0;  ///< (node, gradient weight) pairs of the gap correction (setup memory, 32 B each)
   long quadraturePoints = 0;
+  /// Share of the mapped target area whose closest source triangle faces the majority's way (1 on a
+  /// matching closed surface, about 0.5 on a membrane wetted from both sides).
+  double facingShare = 1.0;
+  bool oneSided = false;  ///< facingShare ≥ kOneSidedShare and keepSide: the side rule was applied
+  /// Quadrature points moved from a source triangle facing the wrong way to the closest one facing theirs.
+  long residedPoints = 0;
+  /// Of those, the largest distance to the new source point (the old one was closer: this is the cost).
+  double maxResidedGap = 0.0;
+  /// Points facing the other way left where they were: their own side is farther than every correctly
+  /// facing point's gap, so the target face itself is turned over (a snapped face at a sharp corner).
+  long turnedPoints = 0;
   long unmappedQuadraturePoints = 0;
   std::vector<UnmappedPoint> firstUnmappedPoints;  ///< up to kListed
   /// Target nodes with an unmapped quadrature point in their support (their value lacks part of its data)

@@ -206,6 +206,11 @@ nlohmann::json reportJson(const ProjectionReport& r) {
           {"unmapped_target_nodes", r.unmappedTargetNodes},
           {"first_unmapped_target_nodes", r.firstUnmappedNodes},
           {"max_gap", r.maxGap},
+          {"facing_share", r.facingShare},
+          {"one_sided", r.oneSided},
+          {"points_moved_to_own_side", r.residedPoints},
+          {"max_gap_of_moved_points", r.maxResidedGap},
+          {"points_facing_the_other_way_left", r.turnedPoints},
           {"setup_seconds", r.setupSeconds},
           {"search_seconds", r.searchSeconds},
           {"assembly_seconds", r.assemblySeconds},
@@ -265,8 +270,9 @@ MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const
   r.tolerance =
       options.tolerance >= 0.0 ? options.tolerance : 0.25 * std::max(a.meanEdgeLength(), b.meanEdgeLength());
   const TestFields fields = makeFields(a, b);
-  const ProjectionOptions po{options.mass, r.tolerance, options.quadratureLevel, options.gapCorrection,
-                             options.defectCorrection};
+  const ProjectionOptions po{
+      options.mass,    r.tolerance, options.quadratureLevel, options.gapCorrection, options.defectCorrection,
+      options.keepSide};
   r.directions[0] = check(a, b, fields, po, options);
   r.directions[1] = check(b, a, fields, po, options);
   checkFinite(r);
@@ -335,6 +341,19 @@ std::string MapCheckResult::summary() const {
       "{}");
   both(
       "largest gap between the surfaces", [](const DirectionCheck& d) { return d.report.maxGap; }, "{:.3g}");
+  both(
+      "area facing one way (one-sided: keep sides)",
+      [](const DirectionCheck& d) {
+        return fmt::format("{:.4f} ({})", d.report.facingShare, d.report.oneSided ? "yes" : "no");
+      },
+      "{}");
+  both(
+      "  moved to their own side (gap) / left",
+      [](const DirectionCheck& d) {
+        return fmt::format("{} ({:.3g}) / {}", d.report.residedPoints, d.report.maxResidedGap,
+                           d.report.turnedPoints);
+      },
+      "{}");
   both(
       "linear field, max error (rel. to range)", [](const DirectionCheck& d) { return d.linear.max; },
       "{:.3e}");

@@ -20,6 +20,7 @@ struct MapCheckOptions {
   int quadratureLevel = kAutoQuadrature;  ///< or a level ≥ 1
   bool gapCorrection = true;
   ProjectionOptions::Defect defectCorrection = ProjectionOptions::Defect::Auto;
+  bool keepSide = true;  ///< ProjectionOptions::keepSide
   int applyRepeats = 20;  ///< applies timed per direction (the mean is reported)
   unsigned seed = 12345;  ///< of the random force field
 };

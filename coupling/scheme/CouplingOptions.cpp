@@ -460,6 +460,10 @@ OptionSchema couplingOptionSchema() {
   coupled.push_back(wordSpec("gapCorrection", OptionType::Switch, "no", {},
                              "projection: carry fields across the gap between curved non-matching meshes "
                              "(exact linear fields and moment; docs/PROJECTION.md)"));
+  coupled.push_back(
+      wordSpec("keepSide", OptionType::Switch, "no", {},
+               "projection: on a body wetted from one side, map each fluid point onto the "
+               "structure's skin facing its own way (thin trailing edges; docs/PROJECTION.md)"));
   OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
                                        "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";

@@ -8,6 +8,18 @@
 
 namespace fsi::coupling {
 
+std::string unstableStructureAdvice(SchemeKind kind) {
+  const std::string smallerStep =
+      "lower `time: {safety: ...}` in the scene or raise `subcycles`, and damp the fabric's in-plane "
+      "ringing (`bulk_viscosity: {}` on its membranes)";
+  if (kind == SchemeKind::Staggered)
+    return "With the staggered scheme a structure lighter than the fluid it moves (added mass above its own "
+           "mass: fabric in air at low speed, any membrane in water) is unstable at every step size: use "
+           "`scheme implicit;` (IQN-ILS acceleration, docs/COUPLING.md). For a heavy structure, " +
+           smallerStep + ".";
+  return "A light, soft structure strongly coupled to the flow may need a smaller step: " + smallerStep + ".";
+}
+
 CouplingScheme::CouplingScheme(const CouplingConfig& config, StructureSolver& structure,
                                std::unique_ptr<Acceleration> acceleration)
     : config_(config), structure_(structure), acceleration_(std::move(acceleration)), history_(1) {

@@ -20,6 +20,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "coupling/scheme/Acceleration.hpp"
@@ -28,6 +29,13 @@
 namespace fsi::coupling {
 
 enum class SchemeKind { Staggered, Implicit };
+
+/// What to change after the structure became unstable inside a coupled window (the adapter's stop message
+/// ends with it). A light structure in a dense fluid (the fluid's added mass above the structure's own) makes
+/// every staggered exchange unstable whatever the step (docs/COUPLING.md, "Added mass"; the HardCoupling
+/// tests): for the staggered scheme the implicit one is the cure, and a smaller step only for a heavy
+/// structure.
+std::string unstableStructureAdvice(SchemeKind kind);
 
 struct CouplingConfig {
   SchemeKind kind = SchemeKind::Implicit;

@@ -43,6 +43,8 @@ bad $'mesh_motion none\ncoupled yes' "mesh_motion none with coupled yes"
 bad "load_relaxation 0" "outside"
 bad "motion_diffusivity cubic" "quadratic, inverse, uniform"
 bad "trailing_edge_tape yes" "trailing_edge_tape needs coupled yes"
+bad "keep_side yes" "keep_side needs coupled yes"
+bad "gap_correction maybe" "no, yes"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 

@@ -154,6 +154,10 @@ TEST(HardCoupling, FilmUnderAddedMassRatios10And100ConvergesToTheMonolithicFilm)
         const fsi::test::DrumRun st = fsi::test::runAddedMassDrum(c, nullptr);
         EXPECT_FALSE(st.finite) << ma;
         EXPECT_LT(st.windows, c.windows);
+        // The stop's advice (the adapter's message) names the cure, the implicit scheme, not a smaller step.
+        EXPECT_NE(unstableStructureAdvice(SchemeKind::Staggered).find("`scheme implicit;`"),
+                  std::string::npos);
+        EXPECT_EQ(unstableStructureAdvice(SchemeKind::Implicit).find("scheme implicit"), std::string::npos);
         std::printf("  staggered stopped after %d windows: %s\n", st.windows,
                     st.diagnosis.empty() ? "amplitude guard" : st.diagnosis.substr(0, 120).c_str());
       }

@@ -23,6 +23,8 @@ import sys
 import time
 from pathlib import Path
 
+from case_variants import chosen, stop_reason
+
 ROOT = Path(__file__).resolve().parent.parent
 CASE = ROOT / "cases/coupled/ramair-kt"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"
@@ -79,19 +81,6 @@ def run_variant(name, out):
     if p.returncode != 0:
         print(f"ramair_resolutions: {name} failed (exit {p.returncode}); see {d / 'Allrun.out'}", file=sys.stderr)
     return p.returncode == 0
-
-
-def stop_reason(d):
-    """Why a run ended early: the mesh guard's or OpenFOAM's first fatal line in log.pimpleFoam."""
-    log = d / "log.pimpleFoam"
-    text = log.read_text(errors="replace") if log.exists() else ""
-    hit = re.search(r"mesh guard: t = ([0-9.e+-]+) s, window (\d+)", text)
-    if hit:
-        cell = re.search(r"Worst cell: \d+(?: on rank \d+)? at \(([^)]*)\)", text)
-        where = f" next to ({', '.join(f'{float(v):.2f}' for v in cell.group(1).split())})" if cell else ""
-        return f"mesh guard stop in window {hit.group(2)} (t = {float(hit.group(1)):.3f} s){where}"
-    hit = re.search(r"FOAM FATAL[^\n]*\n([^\n]*)", text)
-    return f"failed: {hit.group(1).strip()[:80]}" if hit else "failed (see Allrun.out)"
 
 
 def collect(name, out):
@@ -162,10 +151,7 @@ def main():
     a = ap.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    names = [n for n in a.only.split(",") if n]
-    for n in names:
-        if n not in VARIANTS:
-            sys.exit(f"ramair_resolutions: unknown variant '{n}'; valid: {', '.join(VARIANTS)}")
+    names = chosen(a.only, VARIANTS, "ramair_resolutions")
     if not a.collect:
         for n in names:
             print(f"ramair_resolutions: running {n} in {out / n}", flush=True)

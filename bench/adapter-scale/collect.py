@@ -128,17 +128,18 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
-        for ranks, mark in ((1, "o"), (2, "s"), (4, "^")):
+        # colour: the quantity; marker and line: the rank count
+        for ranks, mark, line in ((1, "o", "-"), (2, "s", "--"), (4, "^", ":")):
             sel = [r for r in runs if r["ranks"] == ranks]
             if not sel:
                 continue
             label = f"{ranks} rank(s)" + (" (oversubscribed)" if ranks > 2 else "")
             x = [r["points"] for r in sel]
-            ax[0].loglog(x, [r["structure_per_window"] for r in sel], mark + "-", label=f"structure, {label}")
-            ax[0].loglog(x, [r["fluid_per_window"] for r in sel], mark + "--", label=f"fluid, {label}")
-            ax[0].loglog(x, [r["comm_per_window"] + r["projection_per_window"] for r in sel], mark + ":",
+            ax[0].loglog(x, [r["structure_per_window"] for r in sel], mark + line, color="C0", label=f"structure, {label}")
+            ax[0].loglog(x, [r["fluid_per_window"] for r in sel], mark + line, color="C1", label=f"fluid, {label}")
+            ax[0].loglog(x, [r["comm_per_window"] + r["projection_per_window"] for r in sel], mark + line, color="C2",
                          label=f"gather+scatter+H+Hᵀ, {label}")
-            ax[1].semilogx(x, [100 * r["serial_fraction"] for r in sel], mark + "-", label=label)
+            ax[1].semilogx(x, [100 * r["serial_fraction"] for r in sel], mark + line, color="k", label=label)
         ax[0].set_xlabel("fluid points on the interface")
         ax[0].set_ylabel("seconds per window (master rank, wall)")
         ax[0].legend(fontsize=6)

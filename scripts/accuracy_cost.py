@@ -114,6 +114,8 @@ def sail_section():
             f"force alternation is summarize.py's `force_smoothness` of the sail's z-force from 0.2 s on (1: a sign "
             f"flip every window; the case's CI check requires < 0.02 to 2 s).\n",
             sail_knobs.table(d["rows"]),
+            "What each knob does against the shipped case (the wall times from one loaded machine):\n",
+            sail_knobs.reading(d["rows"]),
             SAIL_KNOBS_BY_HAND]
 
 

@@ -107,6 +107,27 @@ def table(rows):
     return "\n".join(out) + "\n"
 
 
+def reading(rows):
+    """What each knob buys against the shipped case, in words computed from the rows."""
+    base = rows[0]
+    out = []
+    for r in rows[1:]:
+        head = f"- {r['variant']}: "
+        if not r["reached_end"]:
+            out.append(head + f"the run does not survive ({r['stopped']}).")
+            continue
+        words = [f"{r['wall_s'] / base['wall_s']:.2f}× the wall time, {r['iterations']:.1f} iterations per window "
+                 f"against {base['iterations']:.1f}"]
+        if r.get("alternation") and base.get("alternation"):
+            ratio = r["alternation"] / base["alternation"]
+            words.append(f"force alternation {r['alternation']:.4f} against {base['alternation']:.4f} "
+                         f"({ratio:.1f}× the shipped case's)" if abs(ratio - 1) > 0.1 else
+                         f"the same force alternation ({r['alternation']:.4f})")
+        words.append(f"camber {100 * (r['camber'] / base['camber'] - 1):+.2f} %")
+        out.append(head + "; ".join(words) + ".")
+    return "\n".join(out) + "\n"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=str(ROOT / "results/sail-knobs"))
@@ -127,6 +148,7 @@ def main():
         sys.exit("sail_knobs: the shipped case is the reference and did not reach the end")
     (out / "knobs.json").write_text(json.dumps(rows, indent=1))
     print(table(rows))
+    print(reading(rows))
     if a.docs:
         from accuracy_cost import git_commit, machine  # the same machine line as the other tables
         stamp = datetime.datetime.fromtimestamp(max((out / r["variant"] / "wall_seconds").stat().st_mtime

@@ -37,7 +37,8 @@ class Effect {
   /// Lowest node and one past the highest node that elements [begin, end) write to ({0, 0} if none).
   virtual void splitNodeSpan(int /*begin*/, int /*end*/, int& lo, int& hi) const { lo = hi = 0; }
   /// The forces of elements [begin, end) (and their stable step and strain energy) into ctx: addForces()
-  /// is addRange(ctx, 0, splitItems()).
+  /// is addRange(ctx, 0, splitItems()). Of the ranges of one evaluation only the first starts at 0, and its
+  /// ctx holds the node arrays themselves: an effect may add a part that is not per element there.
   virtual void addRange(ForceContext& /*ctx*/, int /*begin*/, int /*end*/) const {}
 };
 

@@ -27,11 +27,14 @@ ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, 
     sh.nodeEnd = int(long(nodes) * (s + 1) / threads);
     int lo = std::numeric_limits<int>::max(), hi = 0;
     for (const Effect* e : split_) {
-      // Equal element counts, boundaries on whole batches; the last share takes the remainder.
+      // Equal element counts, boundaries on whole batches; the last share takes the remainder. Only share 0's
+      // range starts at element 0 (Effect::addRange), even for fewer elements than shares.
       const int n = e->splitItems(), a = e->splitAlignment();
-      Range r;
-      r.begin = s == 0 ? 0 : int(long(n) * s / threads / a * a);
-      r.end = s == threads - 1 ? n : int(long(n) * (s + 1) / threads / a * a);
+      auto boundary = [&](int b) {
+        if (b == 0 || b == threads) return b == 0 ? 0 : n;
+        return std::max(std::min(n, 1), int(long(n) * b / threads / a * a));
+      };
+      const Range r{boundary(s), boundary(s + 1)};
       sh.ranges.push_back(r);
       int l = 0, h = 0;
       e->splitNodeSpan(r.begin, r.end, l, h);

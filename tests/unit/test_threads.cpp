@@ -12,6 +12,7 @@
 #include "MembraneEvaluation.hpp"
 #include "TestScenes.hpp"
 #include "structure/effects/ExternalLoads.hpp"
+#include "structure/effects/InterfacePressure.hpp"
 #include "structure/effects/PressureDistribution.hpp"
 #include "structure/effects/ThreadedForces.hpp"
 #include "structure/effects/Threads.hpp"
@@ -122,8 +123,9 @@ Evaluation evaluateAll(const Model& m, const std::vector<const Effect*>& effects
 
 }  // namespace
 
-// The pressure loads split like the membrane kernel: a follower pressure, a follower pressure distribution
-// and a dead one, each alone (a split effect of its own decides the threading), on 2, 3 and 5 shares.
+// The pressure loads split like the membrane kernel: a follower pressure, a follower pressure distribution,
+// a dead one and the flow's interface load (nodal pressures; nodal forces), each alone (a split effect of
+// its own decides the threading), on 2, 3 and 5 shares.
 TEST(Threads, PressureForcesEqualSerial) {
   if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
   const Scene s = rippledSheet(aboveThreshold());
@@ -135,8 +137,18 @@ TEST(Threads, PressureForcesEqualSerial) {
   const PressureDistribution field("field", conn, values, TimeFunction::constant());
   const PressureDistribution dead =
       PressureDistribution::dead("dead", conn, values, TimeFunction::constant(), m.nodes.X);
+  // The flow's load as the coupling delivers it: a pressure per interface node, and nodal forces.
+  std::vector<int> all(std::size_t(m.nodes.count));
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+  InterfaceLoad pressure{InterfaceLoadKind::Pressure, {}}, nodal{InterfaceLoadKind::NodalForces, {}};
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    pressure.values.push_back(80.0 + 20.0 * std::cos(0.11 * double(i)));
+    for (int k = 0; k < 3; ++k) nodal.values.push_back(std::sin(0.7 * double(i) + k));
+  }
+  const InterfacePressure flowPressure(conn, all, pressure), flowForces(conn, all, nodal);
   for (const Effect* e : {static_cast<const Effect*>(&follower), static_cast<const Effect*>(&field),
-                          static_cast<const Effect*>(&dead)}) {
+                          static_cast<const Effect*>(&dead), static_cast<const Effect*>(&flowPressure),
+                          static_cast<const Effect*>(&flowForces)}) {
     ASSERT_GE(e->splitItems(), kMinParallelItems);
     const Evaluation serial = evaluateAll(m, {e}, 1);
     ASSERT_GT(*std::max_element(serial.fext.begin(), serial.fext.end()), 0.0);
@@ -207,7 +219,9 @@ TEST(Threads, StepsEqualSerial) {
     EXPECT_NEAR(lb.massDamping, la.massDamping, 1e-11 * scale) << threads << " threads";
     EXPECT_LE(lb.balanceError(), 1e-12) << threads << " threads";
     EXPECT_EQ(b.lastDt(), a.lastDt()) << threads << " threads";
-    EXPECT_EQ(b.stableDt(), a.stableDt()) << threads << " threads";
+    // The stable step of the current geometry, which differs by round-off after 40 steps (the step taken is
+    // the limit's whole fraction, equal above).
+    EXPECT_NEAR(b.stableDt(), a.stableDt(), 1e-11 * a.stableDt()) << threads << " threads";
   }
 }
 

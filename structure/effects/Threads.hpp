@@ -14,9 +14,9 @@ bool threadsAvailable();
 
 /// Elements below which a force evaluation (and the node sweep with it) runs serially whatever the thread
 /// count. The measured crossover of a whole step, 1 against 2 threads (docs/PERFORMANCE.md "Threads"): a
-/// step threaded costs a fixed ≈ 40–60 µs more with OMP_WAIT_POLICY=passive (fork, barrier and join each
-/// wake a sleeping thread on this kind of virtual machine) and saves ≈ 8 ns per triangle, so 2 threads gain
-/// from about 7 000–8 000 triangles on. One constant for every split effect: they run in one region.
+/// threaded step costs a fixed ≈ 55–70 µs more with OMP_WAIT_POLICY=passive (fork, barrier and join each
+/// wake a sleeping thread on this kind of virtual machine) and saves ≈ 8.5 ns per triangle, so 2 threads
+/// break even at about 6 500–8 000 triangles. One constant for every split effect: they run in one region.
 constexpr int kMinParallelItems = 8000;
 
 }  // namespace fsi::structure

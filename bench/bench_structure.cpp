@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 
+#include "structure/effects/ThreadedForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/scene/Scene.hpp"
@@ -61,7 +62,7 @@ Scene& cachedScene(long n, const std::string& extra) {
 }
 
 // The scene's membrane effect (batched kernel), or the per-element reference kernel on the same model.
-void membraneKernel(benchmark::State& state, MembraneKernel kernel, int threads = 1) {
+void membraneKernel(benchmark::State& state, MembraneKernel kernel) {
   Scene& s = cachedScene(state.range(0), "");
   Model& m = *s.model;
   const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
@@ -72,7 +73,6 @@ void membraneKernel(benchmark::State& state, MembraneKernel kernel, int threads 
   ctx.v = m.nodes.v.data();
   ctx.fint = m.nodes.fint.data();
   ctx.fext = m.nodes.fext.data();
-  ctx.threads = threads;
   for (auto _ : state) {
     ctx.minStableDt = 1e300;
     membrane->addForces(ctx);
@@ -89,9 +89,27 @@ void BM_MembraneKernel(benchmark::State& state) {
 void BM_MembraneKernelPerElement(benchmark::State& state) {
   membraneKernel(state, MembraneKernel::PerElement);
 }
-// Batched kernel on 2 threads (solver.threads: 2). Wall time: the CPU time counts the calling thread only.
+// The batched kernel through the solver's threaded evaluation (ThreadedForces, solver.threads: N): with the
+// clearing of the force arrays, so the 1-thread variant (the serial evaluateEffects) is the reference for
+// the N-thread one. Wall time: the CPU time counts the calling thread only.
+void membraneKernelThreads(benchmark::State& state, int threads) {
+  Scene& s = cachedScene(state.range(0), "");
+  Model& m = *s.model;
+  ThreadedForces forces({s.effectList().front()}, threads, m.nodes.count);
+  for (auto _ : state) {
+    const ForceContext ctx = forces.evaluate(m.nodes, 0.0, 1.0, false);
+    benchmark::DoNotOptimize(ctx.minStableDt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * m.membranes.count);
+  state.counters["triangles"] = m.membranes.count;
+  state.counters["shares"] = forces.shares();
+}
+void BM_MembraneKernelThreads1(benchmark::State& state) {
+  membraneKernelThreads(state, 1);
+}
 void BM_MembraneKernelThreads2(benchmark::State& state) {
-  membraneKernel(state, MembraneKernel::Batched, 2);
+  membraneKernelThreads(state, 2);
 }
 
 // The pressure effect alone (the scene's only load).
@@ -168,6 +186,11 @@ BENCHMARK(BM_PressureKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(be
 BENCHMARK(BM_NodeSweep)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Step)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepPerElement)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneKernelThreads1)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 BENCHMARK(BM_MembraneKernelThreads2)
     ->RangeMultiplier(10)
     ->Range(1000, 1000000)
@@ -176,6 +199,24 @@ BENCHMARK(BM_MembraneKernelThreads2)
 BENCHMARK(BM_StepThreads2)
     ->RangeMultiplier(10)
     ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+// Between the decades, for the serial threshold (kMinParallelItems): wall time at 1 and 2 threads.
+void BM_StepThreads1(benchmark::State& state) {
+  runSteps(state, "", MembraneKernel::Batched, 1);
+}
+BENCHMARK(BM_StepThreads1)
+    ->Arg(2000)
+    ->Arg(5000)
+    ->Arg(20000)
+    ->Arg(50000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(BM_StepThreads2)
+    ->Arg(2000)
+    ->Arg(5000)
+    ->Arg(20000)
+    ->Arg(50000)
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 BENCHMARK(BM_StepWithViscosityAndGravity)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);

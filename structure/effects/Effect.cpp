@@ -7,7 +7,7 @@
 namespace fsi::structure {
 
 ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& effects, double time,
-                             double loadFactor, bool wantEnergy, int threads) {
+                             double loadFactor, bool wantEnergy) {
   std::fill(nodes.fint.begin(), nodes.fint.end(), 0.0);
   std::fill(nodes.fext.begin(), nodes.fext.end(), 0.0);
   ForceContext ctx;
@@ -18,9 +18,16 @@ ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& eff
   ctx.fint = nodes.fint.data();
   ctx.fext = nodes.fext.data();
   ctx.wantEnergy = wantEnergy;
-  ctx.threads = threads;
   for (const Effect* e : effects) e->addForces(ctx);
   return ctx;
+}
+
+void nodeSpanOf(const std::vector<int>& conn, int k, int begin, int end, int& lo, int& hi) {
+  lo = hi = 0;
+  if (begin >= end) return;
+  const auto [mn, mx] = std::minmax_element(conn.begin() + long(k) * begin, conn.begin() + long(k) * end);
+  lo = *mn;
+  hi = *mx + 1;
 }
 
 }  // namespace fsi::structure

@@ -8,13 +8,12 @@ FollowerPressure::FollowerPressure(std::string label, std::vector<int> triangleC
                                    TimeFunction f)
     : label_(std::move(label)), conn_(std::move(triangleConn)), value_(value), fn_(std::move(f)) {}
 
-void FollowerPressure::addForces(ForceContext& ctx) const {
+void FollowerPressure::addRange(ForceContext& ctx, int begin, int end) const {
   const double p6 = ctx.loadFactor * valueAt(ctx.time) / 6.0;  // p A n / 3 = p (d21 x d31) / 6
   if (p6 == 0.0) return;
   const double* __restrict x = ctx.x;
   double* __restrict f = ctx.fext;
-  const int ne = int(conn_.size() / 3);
-  for (int e = 0; e < ne; ++e) {
+  for (int e = begin; e < end; ++e) {
     const int* n = &conn_[3 * e];
     addTrianglePressure(x, n, p6, f);
   }

@@ -18,7 +18,12 @@ class FollowerPressure final : public Effect {
  public:
   FollowerPressure(std::string label, std::vector<int> triangleConn, double value, TimeFunction f);
   std::string name() const override { return "pressure:" + label_; }
-  void addForces(ForceContext& ctx) const override;
+  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
+  int splitItems() const override { return int(conn_.size() / 3); }
+  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override {
+    nodeSpanOf(conn_, 3, begin, end, lo, hi);
+  }
+  void addRange(ForceContext& ctx, int begin, int end) const override;
   double valueAt(double t) const { return value_ * fn_(t); }
 
  private:

@@ -1,5 +1,7 @@
 #include "structure/effects/InterfacePressure.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -24,7 +26,15 @@ InterfacePressure::InterfacePressure(std::vector<int> triangleConn, std::vector<
   }
 }
 
-void InterfacePressure::addForces(ForceContext& ctx, const InterfaceLoad& load) const {
+void InterfacePressure::splitNodeSpan(int begin, int end, int& lo, int& hi) const {
+  lo = hi = 0;
+  if (begin >= end) return;
+  lo = std::numeric_limits<int>::max();
+  for (int j = 3 * begin; j < 3 * end; ++j) lo = std::min(lo, nodes_[std::size_t(conn_[std::size_t(j)])]);
+  for (int j = 3 * begin; j < 3 * end; ++j) hi = std::max(hi, nodes_[std::size_t(conn_[std::size_t(j)])] + 1);
+}
+
+void InterfacePressure::addRange(ForceContext& ctx, const InterfaceLoad& load, int begin, int end) const {
   const std::size_t n = nodes_.size();
   // The owner sizes the load for its kind; a mismatch is a programming error, never a guess.
   if (load.values.size() != valuesPerInterface(load.kind, n))
@@ -34,13 +44,13 @@ void InterfacePressure::addForces(ForceContext& ctx, const InterfaceLoad& load) 
   const double lf = ctx.loadFactor;
   double* __restrict f = ctx.fext;
   if (load.kind == InterfaceLoadKind::NodalForces) {
+    if (begin > 0) return;
     for (std::size_t i = 0; i < n; ++i)
       for (int k = 0; k < 3; ++k) f[3 * nodes_[i] + k] += lf * q[3 * i + std::size_t(k)];
     return;
   }
   const double* __restrict x = ctx.x;
-  const int ne = int(conn_.size() / 3);
-  for (int e = 0; e < ne; ++e) {
+  for (int e = begin; e < end; ++e) {
     const int a = conn_[3 * e], b = conn_[3 * e + 1], c = conn_[3 * e + 2];
     const int na = nodes_[a], nb = nodes_[b], nc = nodes_[c];
     const double* p1 = x + 3 * na;

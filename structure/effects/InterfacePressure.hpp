@@ -49,10 +49,17 @@ class InterfacePressure final : public Effect {
   std::string name() const override { return "interface_pressure"; }
   void addForces(ForceContext& ctx) const override { addForces(ctx, load_); }
   /// The forces of any load on this interface (e.g. to sum a load that is not the current one).
-  void addForces(ForceContext& ctx, const InterfaceLoad& load) const;
+  void addForces(ForceContext& ctx, const InterfaceLoad& load) const { addRange(ctx, load, 0, splitItems()); }
+  // Splits over the triangles for threads (ThreadedForces.hpp). Nodal forces are a cheap pass over the
+  // interface nodes: the range that starts at triangle 0 (the first share, which writes to the node
+  // arrays themselves) adds them all.
+  int splitItems() const override { return int(conn_.size() / 3); }
+  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override;
+  void addRange(ForceContext& ctx, int begin, int end) const override { addRange(ctx, load_, begin, end); }
   const std::vector<int>& nodes() const { return nodes_; }
 
  private:
+  void addRange(ForceContext& ctx, const InterfaceLoad& load, int begin, int end) const;
   std::vector<int> conn_;   ///< triangles as local interface node indices
   std::vector<int> nodes_;  ///< interface node -> model node
   const InterfaceLoad& load_;

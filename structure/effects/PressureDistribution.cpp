@@ -30,21 +30,19 @@ PressureDistribution PressureDistribution::dead(std::string label, std::vector<i
   return d;
 }
 
-void PressureDistribution::addForces(ForceContext& ctx) const {
+void PressureDistribution::addRange(ForceContext& ctx, int begin, int end) const {
   const double s = ctx.loadFactor * fn_(ctx.time);
   if (s == 0.0) return;
   if (!dead_.empty()) {
     double* __restrict f = ctx.fext;
-    const int ne = int(sixth_.size());
-    for (int e = 0; e < ne; ++e)
+    for (int e = begin; e < end; ++e)
       for (int a = 0; a < 3; ++a)
         for (int k = 0; k < 3; ++k) f[3 * conn_[3 * e + a] + k] += s * dead_[3 * e + k];
     return;
   }
   const double* __restrict x = ctx.x;
   double* __restrict f = ctx.fext;
-  const int ne = int(sixth_.size());
-  for (int e = 0; e < ne; ++e) {
+  for (int e = begin; e < end; ++e) {
     const int* n = &conn_[3 * e];
     addTrianglePressure(x, n, s * sixth_[e], f);
   }

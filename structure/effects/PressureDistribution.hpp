@@ -33,7 +33,12 @@ class PressureDistribution final : public Effect {
                                    std::vector<double> values, TimeFunction f, const std::vector<double>& X);
   bool follower() const { return dead_.empty(); }
   std::string name() const override { return "pressure_distribution:" + label_; }
-  void addForces(ForceContext& ctx) const override;
+  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
+  int splitItems() const override { return int(sixth_.size()); }
+  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override {
+    nodeSpanOf(conn_, 3, begin, end, lo, hi);
+  }
+  void addRange(ForceContext& ctx, int begin, int end) const override;
 
  private:
   std::string label_;

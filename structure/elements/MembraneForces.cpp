@@ -2,13 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
-#ifdef FSI_HAVE_OPENMP
-#include <omp.h>
-#endif
-
-#include "structure/effects/Threads.hpp"
 #include "structure/elements/MembraneBatch.hpp"
 #include "structure/elements/MembraneKinematics.hpp"
 
@@ -177,77 +171,19 @@ MembraneForces::MembraneForces(const MembraneTriangles& elements, MembraneViscos
     : el_(elements), visc_(viscosity), kernel_(kernel) {}
 
 void MembraneForces::addForces(ForceContext& ctx) const {
-  if (ctx.threads > 1 && el_.count >= kMinParallelItems && threadsAvailable()) {
-    addForcesThreaded(ctx);
-  } else {
-    evaluateRange(el_, visc_, kernel_, 0, el_.count, ctx);
-  }
-}
-
-// Contiguous element ranges of equal size (whole batches), one per share; the elements are sorted by their
-// lowest node, so each range touches a narrow band of nodes, which is all its buffer clears and adds.
-void MembraneForces::partition(int shares) const {
-  shares_.assign(shares, {});
-  for (int s = 0; s < shares; ++s) {
-    ThreadShare& sh = shares_[s];
-    sh.begin = s == 0 ? 0 : shares_[s - 1].end;
-    sh.end = s == shares - 1 ? el_.count
-                             : int(long(el_.count) * (s + 1) / shares / membrane::kWidth * membrane::kWidth);
-    int lo = 0, hi = 0;
-    if (sh.begin < sh.end) {
-      const auto [mn, mx] =
-          std::minmax_element(el_.conn.begin() + 3 * sh.begin, el_.conn.begin() + 3 * sh.end);
-      lo = *mn, hi = *mx + 1;
-    }
-    sh.lo = 3 * lo;
-    sh.hi = 3 * hi;
-    if (s > 0) sh.f.assign(sh.hi, 0.0);  // share 0 adds into the context's array directly
-  }
-}
-
-// Each thread evaluates its share into its own buffer (share 0 straight into ctx.fint), then the threads add
-// the buffers into ctx.fint, each over its own slice of the dofs: no two threads ever write one address.
-// The sums at the nodes a share boundary crosses are added in another order than serially: round-off only.
-void MembraneForces::addForcesThreaded(ForceContext& ctx) const {
-#ifdef FSI_HAVE_OPENMP
-  const int shares = ctx.threads;
-  if (int(shares_.size()) != shares) partition(shares);
-  std::vector<double> dt(shares, ctx.minStableDt), energy(shares, 0.0);
-  int lo = std::numeric_limits<int>::max(), hi = 0;  // the dofs some buffer holds
-  for (int s = 1; s < shares; ++s) lo = std::min(lo, shares_[s].lo), hi = std::max(hi, shares_[s].hi);
-#pragma omp parallel num_threads(shares)
-  {
-    // The runtime may give fewer threads than asked (nested regions, OMP_THREAD_LIMIT): a thread then
-    // takes several shares.
-    const int nt = omp_get_num_threads();
-    for (int s = omp_get_thread_num(); s < shares; s += nt) {
-      ThreadShare& sh = shares_[s];
-      ForceContext local = ctx;
-      local.strainEnergy = 0.0;
-      if (s > 0) {
-        std::fill(sh.f.begin() + sh.lo, sh.f.begin() + sh.hi, 0.0);
-        local.fint = sh.f.data();
-      }
-      evaluateRange(el_, visc_, kernel_, sh.begin, sh.end, local);
-      dt[s] = local.minStableDt;
-      energy[s] = local.strainEnergy;
-    }
-#pragma omp barrier
-#pragma omp for schedule(static) nowait  // the end of the region joins the threads anyway
-    for (int d = lo; d < hi; ++d) {
-      double sum = 0.0;
-      for (int s = 1; s < shares; ++s)
-        if (d >= shares_[s].lo && d < shares_[s].hi) sum += shares_[s].f[d];
-      ctx.fint[d] += sum;
-    }
-  }
-  for (int s = 0; s < shares; ++s) {
-    ctx.minStableDt = std::min(ctx.minStableDt, dt[s]);
-    ctx.strainEnergy += energy[s];
-  }
-#else
   evaluateRange(el_, visc_, kernel_, 0, el_.count, ctx);
-#endif
+}
+
+void MembraneForces::addRange(ForceContext& ctx, int begin, int end) const {
+  evaluateRange(el_, visc_, kernel_, begin, end, ctx);
+}
+
+void MembraneForces::splitNodeSpan(int begin, int end, int& lo, int& hi) const {
+  nodeSpanOf(el_.conn, 3, begin, end, lo, hi);
+}
+
+int MembraneForces::splitAlignment() const {
+  return kernel_ == MembraneKernel::Batched ? membrane::kWidth : 1;
 }
 
 void MembraneForces::evaluate(const double* x, MembraneStressField& out) const {

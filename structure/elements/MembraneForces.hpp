@@ -13,8 +13,8 @@
 // The kinematics and the law live in MembraneKinematics.hpp (shared with the output and the stiffness
 // bounds); the rest of the element kind (mass, scaling, fields, diagnosis) in MembraneElement.
 // Evaluation: batches of lanes::kWidth triangles in vector lanes (MembraneBatch.hpp), the per-element loop
-// for each block's remainder and as the reference; with ForceContext::threads > 1, contiguous element shares
-// on OpenMP threads, each with its own force buffer (docs/PERFORMANCE.md "Threads").
+// for each block's remainder and as the reference. Splits into contiguous element ranges (whole batches) for
+// threads (effects/ThreadedForces.hpp).
 
 #include <cstdint>
 #include <vector>
@@ -47,6 +47,10 @@ class MembraneForces final : public Effect {
                  MembraneKernel kernel = MembraneKernel::Batched);
   std::string name() const override { return "membrane"; }
   void addForces(ForceContext& ctx) const override;
+  int splitItems() const override { return el_.count; }
+  int splitAlignment() const override;
+  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override;
+  void addRange(ForceContext& ctx, int begin, int end) const override;
   /// Stresses, states and strains at configuration x (no forces); used at output times.
   void evaluate(const double* x, MembraneStressField& out) const;
 
@@ -54,17 +58,6 @@ class MembraneForces final : public Effect {
   const MembraneTriangles& el_;
   MembraneViscosity visc_;
   MembraneKernel kernel_;
-
-  // Threaded evaluation (ForceContext::threads > 1): one contiguous element range and one force buffer per
-  // share, made at the first threaded call and kept while the thread count stays.
-  struct ThreadShare {
-    int begin = 0, end = 0;  ///< elements
-    int lo = 0, hi = 0;      ///< dofs the elements touch
-    std::vector<double> f;   ///< forces of the share (dofs [lo, hi) used; share 0 uses the context's)
-  };
-  mutable std::vector<ThreadShare> shares_;
-  void partition(int shares) const;
-  void addForcesThreaded(ForceContext& ctx) const;
 };
 
 /// Stresses, states and strains of every triangle at configuration x (the output fields and stress probes).

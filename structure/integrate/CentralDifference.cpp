@@ -5,8 +5,6 @@
 #include <limits>
 #include <set>
 
-#include "structure/effects/Threads.hpp"
-
 #ifdef FSI_HAVE_OPENMP
 #include <omp.h>
 #endif
@@ -21,14 +19,7 @@ double halfVelocityEnergy(const Nodes& N) {
   return ke;
 }
 
-// The node sweep's energy sums (see CentralDifference::step).
-struct SweepSums {
-  double ke = 0, prod = 0, vv = 0, extOld = 0, intOld = 0, extNew = 0, intNew = 0;
-  void add(const SweepSums& o) {
-    ke += o.ke, prod += o.prod, vv += o.vv, extOld += o.extOld, intOld += o.intOld, extNew += o.extNew,
-        intNew += o.intNew;
-  }
-};
+using SweepSums = CentralDifference::SweepSums;
 struct SweepCoefficients {
   double c1, c2, dtAvg, dtNext;
 };
@@ -63,12 +54,22 @@ void sweepNodes(int begin, int end, const SweepCoefficients& c, double* __restri
   out = {ke, prod, vv, extOld, intOld, extNew, intNew};
 }
 
+SweepCoefficients coefficients(double dtPrev, double dtNext, double massDamping) {
+  const double dtAvg = 0.5 * (dtPrev + dtNext);
+  return {1.0 - 0.5 * massDamping * dtAvg, 1.0 / (1.0 + 0.5 * massDamping * dtAvg), dtAvg, dtNext};
+}
+
 EnergyLedger ledgerFrom(double kinetic) {
   EnergyLedger e;
   e.initialKinetic = e.kinetic = e.kineticProduct = e.supplied = kinetic;
   return e;
 }
 }  // namespace
+
+void CentralDifference::SweepSums::add(const SweepSums& o) {
+  ke += o.ke, prod += o.prod, vv += o.vv, extOld += o.extOld, intOld += o.intOld, extNew += o.extNew,
+      intNew += o.intNew;
+}
 
 CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> effects,
                                      Constraints constraints, CentralDifferenceSettings settings,
@@ -77,6 +78,8 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
       effects_(std::move(effects)),
       constraints_(std::move(constraints)),
       settings_(settings),
+      forces_(effects_, settings.threads, model.nodes.count),
+      sweepParts_(std::size_t(forces_.shares())),
       time_(startTime) {
   // A dof listed twice (a node in two selected sets) follows its last entry; one entry per dof books the
   // support reaction once.
@@ -101,14 +104,14 @@ CentralDifference::CentralDifference(Model& model, std::vector<const Effect*> ef
 double CentralDifference::recordInitialStrain() {
   // A separate evaluation: the steps' own force evaluations stay exactly those of a run without it (the
   // kernels that sum the energy may round differently).
-  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, true, settings_.threads);
+  const ForceContext ctx = forces_.evaluate(model_.nodes, time_, 1.0, true);
   ledger_.initialStrain = ctx.strainEnergy;
   ledger_.updateSupplied();
   return ctx.minStableDt;
 }
 
 double CentralDifference::computeForces(bool withEnergy) {
-  const ForceContext ctx = evaluateEffects(model_.nodes, effects_, time_, 1.0, withEnergy, settings_.threads);
+  const ForceContext ctx = forces_.evaluate(model_.nodes, time_, 1.0, withEnergy);
   if (withEnergy) ledger_.strain = ctx.strainEnergy;
   stableDt_ = ctx.minStableDt;
   return ctx.minStableDt;
@@ -128,26 +131,68 @@ double CentralDifference::createdAtCurrentState() {
   return e.created();
 }
 
-bool CentralDifference::step(double limitTime, bool monitor) {
-  Nodes& N = model_.nodes;
-  const double stable = computeForces(monitor);
+double CentralDifference::nextDt(double stable, double limitTime) const {
   double dtNext =
       settings_.fixedDt > 0 ? settings_.fixedDt : std::min(settings_.safety * stable, settings_.maxDt);
   if (!(dtNext > 0) || !std::isfinite(dtNext)) dtNext = settings_.maxDt < 1e299 ? settings_.maxDt : 0.0;
-  if (!(dtNext > 0)) return false;  // no element bounds the step and no maximum is set: nothing to integrate
+  // No element bounds the step and no maximum is set: nothing to integrate.
+  if (!(dtNext > 0)) return std::numeric_limits<double>::quiet_NaN();
   // Land exactly on the limit in equal steps, not by shortening the last one or two: output times and
   // coupling windows recur, and a step that changes periodically pumps energy into the modes near the
   // stability limit (parametric resonance) although each step is stable. The step count is the same.
   const double remaining = limitTime - time_;
-  if (remaining <= dtNext * (1.0 + 1e-9))
-    dtNext = remaining;
-  else
-    dtNext = remaining / std::ceil(remaining / (dtNext * (1.0 + 1e-9)));  // same tolerance: no extra step
-  const double dtAvg = 0.5 * (dt_ + dtNext);
-  const double a = settings_.massDamping;
-  const double c1 = 1.0 - 0.5 * a * dtAvg;
-  const double c2 = 1.0 / (1.0 + 0.5 * a * dtAvg);
+  if (remaining <= dtNext * (1.0 + 1e-9)) return remaining;
+  return remaining / std::ceil(remaining / (dtNext * (1.0 + 1e-9)));  // same tolerance: no extra step
+}
 
+double CentralDifference::forcesAndSweep(double limitTime, bool monitor, SweepSums& sums) {
+  Nodes& N = model_.nodes;
+  ForceContext base;
+  base.time = time_;
+  base.x = N.x.data();
+  base.v = N.v.data();
+  base.fint = N.fint.data();
+  base.fext = N.fext.data();
+  base.wantEnergy = monitor;
+  double dtNext = std::numeric_limits<double>::quiet_NaN();
+#ifdef FSI_HAVE_OPENMP
+  double* __restrict x = N.x.data();
+  double* __restrict v = N.v.data();
+  const double* __restrict im = N.invMassDof.data();
+  const double* __restrict m = N.mass.data();
+  const int shares = forces_.shares();
+#pragma omp parallel num_threads(shares)
+  {
+    // The runtime may give fewer threads than asked (nested regions, OMP_THREAD_LIMIT): a thread then takes
+    // several shares.
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+    for (int s = t; s < shares; s += nt) forces_.evaluateShare(s, base);
+#pragma omp barrier
+    // Every thread derives the same step from the shares' stable steps (a minimum: exact in any order), then
+    // completes the forces of its nodes and moves them: the gather and the sweep see the same nodes, so no
+    // barrier between them.
+    const double dt = nextDt(forces_.minStableDt(), limitTime);
+    if (!std::isnan(dt)) {
+      const SweepCoefficients coef = coefficients(dt_, dt, settings_.massDamping);
+      for (int s = t; s < shares; s += nt) {
+        forces_.gather(s, base.fint, base.fext);
+        sweepNodes(forces_.nodeBegin(s), forces_.nodeEnd(s), coef, x, v, base.fint, base.fext, im, m,
+                   sweepParts_[std::size_t(s)]);
+      }
+    }
+    if (t == 0) dtNext = dt;
+  }
+#endif
+  stableDt_ = forces_.minStableDt();
+  if (monitor) ledger_.strain = forces_.strainEnergy();
+  // The ranges' sums in range order: a run is reproducible.
+  if (!std::isnan(dtNext))
+    for (const SweepSums& p : sweepParts_) sums.add(p);
+  return dtNext;
+}
+
+bool CentralDifference::step(double limitTime, bool monitor) {
+  Nodes& N = model_.nodes;
   double* __restrict x = N.x.data();
   double* __restrict v = N.v.data();
   const double* __restrict fi = N.fint.data();
@@ -173,27 +218,19 @@ bool CentralDifference::step(double limitTime, bool monitor) {
 
   // One sweep: update, physical KE of the mid-step velocity, Σ m v(n−½)·v(n+½), Σ m v(n+½)², and the
   // forces' power at both half-step velocities (the two halves of this evaluation's work).
-  const SweepCoefficients coef{c1, c2, dtAvg, dtNext};
   SweepSums sums;
-#ifdef FSI_HAVE_OPENMP
-  const int threads = settings_.threads > 1 && N.count >= kMinParallelItems ? settings_.threads : 1;
-  if (threads > 1) {
-    // Contiguous node ranges, one per thread; their sums are added in range order, so a run is reproducible.
-    std::vector<SweepSums> part(threads);
-#pragma omp parallel num_threads(threads)
-    {
-      const int nt = omp_get_num_threads();
-      for (int t = omp_get_thread_num(); t < threads; t += nt)
-        sweepNodes(int(long(N.count) * t / threads), int(long(N.count) * (t + 1) / threads), coef, x, v, fi,
-                   fe, im, m, part[t]);
-    }
-    for (const SweepSums& p : part) sums.add(p);
+  double dtNext;
+  if (forces_.serial()) {
+    dtNext = nextDt(computeForces(monitor), limitTime);
+    if (!std::isnan(dtNext))
+      sweepNodes(0, N.count, coefficients(dt_, dtNext, settings_.massDamping), x, v, fi, fe, im, m, sums);
   } else {
-    sweepNodes(0, N.count, coef, x, v, fi, fe, im, m, sums);
+    dtNext = forcesAndSweep(limitTime, monitor, sums);
   }
-#else
-  sweepNodes(0, N.count, coef, x, v, fi, fe, im, m, sums);
-#endif
+  if (std::isnan(dtNext)) return false;
+  const SweepCoefficients coef = coefficients(dt_, dtNext, settings_.massDamping);
+  const double dtAvg = coef.dtAvg, c1 = coef.c1, c2 = coef.c2;
+  const double a = settings_.massDamping;
   double ke = sums.ke, prod = sums.prod, vv = sums.vv, extOld = sums.extOld, intOld = sums.intOld,
          extNew = sums.extNew, intNew = sums.intNew;
 

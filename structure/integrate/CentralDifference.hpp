@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
+#include "structure/effects/ThreadedForces.hpp"
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/EnergyLedger.hpp"
 #include "structure/integrate/StateSnapshot.hpp"
@@ -80,8 +81,20 @@ class CentralDifference {
   /// Returns to a checkpoint: state, ledger and step estimate as they were when it was taken.
   void restore(const StateSnapshot& c);
 
+ public:
+  /// The node sweep's energy sums (step()).
+  struct SweepSums {
+    double ke = 0, prod = 0, vv = 0, extOld = 0, intOld = 0, extNew = 0, intNew = 0;
+    void add(const SweepSums& o);
+  };
+
  private:
   double computeForces(bool withEnergy);
+  /// Δt(n+1) from the elements' stable step; NaN if nothing bounds it.
+  double nextDt(double stable, double limitTime) const;
+  /// Threads: the forces and the node sweep in one parallel region (ThreadedForces.hpp). Returns Δt(n+1)
+  /// (NaN: not swept) and the sweep's sums.
+  double forcesAndSweep(double limitTime, bool monitor, SweepSums& sums);
   /// Records U0 at the current state; returns the element step estimate of that evaluation.
   double recordInitialStrain();
 
@@ -89,6 +102,8 @@ class CentralDifference {
   std::vector<const Effect*> effects_;
   Constraints constraints_;
   CentralDifferenceSettings settings_;
+  ThreadedForces forces_;
+  std::vector<SweepSums> sweepParts_;  ///< one per share of forces_ (threads)
   EnergyLedger ledger_;
   double time_ = 0;
   double dt_ = 0;  ///< Δt(n) = t(n) − t(n−1); 0 before the first step (half-step start)

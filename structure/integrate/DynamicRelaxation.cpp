@@ -22,14 +22,18 @@ double defaultLambda(const RelaxationSettings& s) {
 
 DynamicRelaxation::DynamicRelaxation(Model& model, std::vector<const Effect*> effects,
                                      Constraints constraints, RelaxationSettings settings)
-    : model_(model), effects_(std::move(effects)), constraints_(std::move(constraints)), s_(settings) {
+    : model_(model),
+      effects_(std::move(effects)),
+      constraints_(std::move(constraints)),
+      s_(settings),
+      forces_(effects_, settings.threads, model.nodes.count) {
   constraints_.applyTo(model_.nodes);
   free_.resize(3 * model_.nodes.count);
   for (std::size_t d = 0; d < free_.size(); ++d) free_[d] = model_.nodes.invMassDof[d] != 0.0 ? 1.0 : 0.0;
 }
 
 void DynamicRelaxation::forces(double loadFactor) {
-  strain_ = evaluateEffects(model_.nodes, effects_, s_.loadTime, loadFactor, true, s_.threads).strainEnergy;
+  strain_ = forces_.evaluate(model_.nodes, s_.loadTime, loadFactor, true).strainEnergy;
 }
 
 RelaxationResult DynamicRelaxation::run(const std::function<void(int, const RelaxationResult&)>& onIncrement,

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
+#include "structure/effects/ThreadedForces.hpp"
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
 #include "structure/integrate/StateSnapshot.hpp"
@@ -101,6 +102,7 @@ class DynamicRelaxation {
   std::vector<const Effect*> effects_;
   Constraints constraints_;
   RelaxationSettings s_;
+  ThreadedForces forces_;
   std::vector<double> mass_;            ///< fictitious mass per node
   std::vector<double> free_;            ///< 1 for a free dof, 0 for a constrained one
   std::vector<double> resid_, vTrial_;  ///< tie groups only: shared residual, trial velocities

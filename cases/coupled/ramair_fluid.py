@@ -62,9 +62,17 @@ SETTINGS = {
     "outer_correctors": ("int", 3, 1, 50, "PIMPLE outer correctors per step"),
     "turbulence_intensity": ("float", 0.005, 1e-5, 0.5, "free-stream k = 1.5 (I U)^2 (kOmegaSST)"),
     "viscosity_ratio": ("float", 10.0, 1e-3, 1e5, "free-stream nut/nu, sets omega = k/(ratio nu) (kOmegaSST)"),
-    "mesh_motion": (["auto", "none", "laplacian"], "auto", None, None,
+    "mesh_motion": (["auto", "none", "laplacian", "rigidfit"], "auto", None, None,
                     "none: static mesh (rigid wing); laplacian: displacementLaplacian, inverse-distance "
-                    "diffusivity; auto: laplacian when coupled, else none"),
+                    "diffusivity; rigidfit: the wing's best-fit rigid motion carried by the cells around it "
+                    "(libfsiFoam's fsiRigidFitDisplacementLaplacian), the Laplacian for the rest; auto: "
+                    "laplacian when coupled, else none"),
+    "correct_phi": (["no", "yes"], "no", None, None,
+                    "moving mesh: PIMPLE's correctPhi (make the fluxes divergence-free again after each mesh "
+                    "motion, one more pressure-like solve per step)"),
+    "rigid_inner": ("float", 0.3, 0.0, 50.0, "rigidfit: cells this many chords from the wing move rigidly"),
+    "rigid_outer": ("float", 4.0, 0.01, 100.0,
+                    "rigidfit: the rigid part fades out over the cells up to this many chords from the wing"),
     "motion_diffusivity": (list(DIFFUSIVITY), "quadratic", None, None,
                            "laplacian: quadratic (1/r^2 from the wing: the cells next to it move with it), "
                            "inverse (1/r) or uniform"),
@@ -164,8 +172,15 @@ def read_settings(path):
     # Keys that depend on each other
     if values["mesh_motion"] == "auto":
         values["mesh_motion"] = "laplacian" if values["coupled"] == "yes" else "none"
+    for key in ("rigid_inner", "rigid_outer"):
+        if key in where and values["mesh_motion"] != "rigidfit":
+            raise InputError(f"{path}:{where[key]}: {key} needs mesh_motion rigidfit")
+    if values["rigid_inner"] >= values["rigid_outer"]:
+        line = where.get("rigid_outer", where.get("rigid_inner"))
+        raise InputError(f"{path}:{line}: rigid_inner ({values['rigid_inner']:g} chords) must be below rigid_outer "
+                         f"({values['rigid_outer']:g}): the rigid part fades out between the two")
     if values["coupled"] == "yes":
-        if values["mesh_motion"] != "laplacian":
+        if values["mesh_motion"] not in ("laplacian", "rigidfit"):
             raise InputError(f"{path}:{where['mesh_motion']}: mesh_motion none with coupled yes: the coupled wing "
                              "moves the mesh (mesh_motion laplacian or auto)")
         if values["stl_bulge"] >= 0:
@@ -415,6 +430,19 @@ mergeTolerance 1e-6;
                   "motionSolver displacementLaplacian;\n"
                   "// Diffusivity falling with the distance from the wing keeps the cells next to it rigid.\n"
                   f"displacementLaplacianCoeffs {{ diffusivity {DIFFUSIVITY[s['motion_diffusivity']]}; }}\n")
+    elif s["mesh_motion"] == "rigidfit":
+        inner, outer = s["rigid_inner"] * c, s["rigid_outer"] * c
+        clearance = min(min(w_lo - b_lo, b_hi - w_hi) for b_lo, b_hi, w_lo, w_hi in zip(bmin, bmax, lo, hi))
+        if not outer < clearance:
+            raise InputError(f"{settings_path}: rigid_outer {s['rigid_outer']:g} chords reaches the far field, "
+                             f"{clearance / c:.3g} chords from the wing: the far field must stay put")
+        motion = ("dynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolverLibs (\"libfsiFoam.so\");\n"
+                  "// The wing's best-fit rigid motion (its swing on the lines) moves the cells within innerDistance\n"
+                  "// rigidly and fades out by outerDistance; the Laplacian carries the rest (the canopy's deformation).\n"
+                  "motionSolver fsiRigidFitDisplacementLaplacian;\n"
+                  f"displacementLaplacianCoeffs\n{{\n  diffusivity {DIFFUSIVITY[s['motion_diffusivity']]};\n"
+                  f"  patches (wing);\n  innerDistance {inner:.6g};   // {s['rigid_inner']:g} chords\n"
+                  f"  outerDistance {outer:.6g};   // {s['rigid_outer']:g} chords\n}}\n")
     else:
         motion = "// Rigid wing: no mesh motion (mesh_motion laplacian in the settings moves it).\ndynamicFvMesh staticFvMesh;\n"
     write(os.path.join(cons, "dynamicMeshDict"), "dictionary", "dynamicMeshDict", src, motion)
@@ -450,7 +478,7 @@ solvers
 PIMPLE
 {{
   momentumPredictor yes; nOuterCorrectors {s['outer_correctors']}; nCorrectors 1; nNonOrthogonalCorrectors 1;
-  correctPhi no;
+  correctPhi {s['correct_phi']};
 }}
 relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }} }}
 """)

@@ -6,10 +6,7 @@
 
 namespace fsi::structure {
 
-ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& effects, double time,
-                             double loadFactor, bool wantEnergy) {
-  std::fill(nodes.fint.begin(), nodes.fint.end(), 0.0);
-  std::fill(nodes.fext.begin(), nodes.fext.end(), 0.0);
+ForceContext forceContextFor(Nodes& nodes, double time, double loadFactor, bool wantEnergy) {
   ForceContext ctx;
   ctx.time = time;
   ctx.loadFactor = loadFactor;
@@ -18,6 +15,14 @@ ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& eff
   ctx.fint = nodes.fint.data();
   ctx.fext = nodes.fext.data();
   ctx.wantEnergy = wantEnergy;
+  return ctx;
+}
+
+ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& effects, double time,
+                             double loadFactor, bool wantEnergy) {
+  std::fill(nodes.fint.begin(), nodes.fint.end(), 0.0);
+  std::fill(nodes.fext.begin(), nodes.fext.end(), 0.0);
+  ForceContext ctx = forceContextFor(nodes, time, loadFactor, wantEnergy);
   for (const Effect* e : effects) e->addForces(ctx);
   return ctx;
 }

@@ -47,6 +47,9 @@ void nodeSpanOf(const std::vector<int>& conn, int k, int begin, int end, int& lo
 
 struct Nodes;
 
+/// A context pointing at the nodes' state and force arrays (the forces are not touched).
+ForceContext forceContextFor(Nodes& nodes, double time, double loadFactor, bool wantEnergy);
+
 /// Zeroes the node force arrays and lets every effect add its forces at the nodes' current state.
 /// The returned context holds the smallest element stable step and (if asked) the strain energy. One thread;
 /// ThreadedForces evaluates the same on several.

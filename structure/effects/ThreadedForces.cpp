@@ -97,14 +97,7 @@ double ThreadedForces::strainEnergy() const {
 
 ForceContext ThreadedForces::evaluate(Nodes& nodes, double time, double loadFactor, bool wantEnergy) {
   if (serial()) return evaluateEffects(nodes, effects_, time, loadFactor, wantEnergy);
-  ForceContext ctx;
-  ctx.time = time;
-  ctx.loadFactor = loadFactor;
-  ctx.x = nodes.x.data();
-  ctx.v = nodes.v.data();
-  ctx.fint = nodes.fint.data();
-  ctx.fext = nodes.fext.data();
-  ctx.wantEnergy = wantEnergy;
+  ForceContext ctx = forceContextFor(nodes, time, loadFactor, wantEnergy);
 #ifdef FSI_HAVE_OPENMP
   const int shares = this->shares();
 #pragma omp parallel num_threads(shares)

@@ -147,13 +147,7 @@ double CentralDifference::nextDt(double stable, double limitTime) const {
 
 double CentralDifference::forcesAndSweep(double limitTime, bool monitor, SweepSums& sums) {
   Nodes& N = model_.nodes;
-  ForceContext base;
-  base.time = time_;
-  base.x = N.x.data();
-  base.v = N.v.data();
-  base.fint = N.fint.data();
-  base.fext = N.fext.data();
-  base.wantEnergy = monitor;
+  const ForceContext base = forceContextFor(N, time_, 1.0, monitor);
   double dtNext = std::numeric_limits<double>::quiet_NaN();
 #ifdef FSI_HAVE_OPENMP
   double* __restrict x = N.x.data();

@@ -45,6 +45,8 @@ bad "motion_diffusivity cubic" "quadratic, inverse, uniform"
 bad "trailing_edge_tape yes" "trailing_edge_tape needs coupled yes"
 bad "keep_side yes" "keep_side needs coupled yes"
 bad "gap_correction maybe" "no, yes"
+bad "rigid_outer 3" "rigid_outer needs mesh_motion rigidfit"
+bad $'rigid_outer 1\nmesh_motion rigidfit\nrigid_inner 2' "must be below rigid_outer"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 
@@ -119,5 +121,25 @@ for b in bad:
 print("variant (angle 4, kOmegaSST, laplacian):", "ok" if not bad else "FAILED")
 sys.exit(1 if bad else 0)
 PY
+# mesh_motion rigidfit: libfsiFoam's motion solver with the distances in chords; a ramp reaching the far field
+# is refused naming the key.
+mkdir -p rigidfit && printf 'speed 15\nmesh_motion rigidfit\nrigid_inner 0.5\nrigid_outer 3\n' > rigidfit.settings
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write rigidfit.settings constant/triSurface/wing.stl rigidfit > /dev/null ||
+  fail "mesh_motion rigidfit: the dictionaries were not written"
+/usr/bin/python3 - <<'PY' || rc=1
+import json, re, sys
+c = json.load(open("rigidfit/constant/fluidSettings.json"))["wing"]["chord"]
+d = open("rigidfit/constant/dynamicMeshDict").read()
+got = {k: float(re.search(k + r"\s+([-+0-9.eE]+);", d).group(1)) for k in ("innerDistance", "outerDistance")}
+ok = ("motionSolver fsiRigidFitDisplacementLaplacian;" in d and "libfsiFoam.so" in d and "patches (wing);" in d
+      and abs(got["innerDistance"] - 0.5 * c) < 1e-5 and abs(got["outerDistance"] - 3 * c) < 1e-5)
+print(f"rigidfit: {got} for the chord {c:.5g} m:", "ok" if ok else "FAILED")
+sys.exit(0 if ok else 1)
+PY
+printf 'speed 15\nmesh_motion rigidfit\nrigid_outer 40\n' > rigidfit.settings
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write rigidfit.settings constant/triSurface/wing.stl rigidfit > rigidfit.log 2>&1 &&
+  fail "rigid_outer 40 (past the far field) accepted"
+grep -q "rigid_outer 40 chords reaches the far field" rigidfit.log || { cat rigidfit.log; fail "rigid_outer 40: no message naming the key"; }
+
 [ $rc -eq 0 ] && echo "PASS ramair-kt fluid" || echo "FAIL ramair-kt fluid"
 exit $rc

@@ -78,6 +78,27 @@ def main():
     good = when == 3.0 and abs(mean - (3 * 2.0 + 1)) < 1e-12
     print(f"time average of 3 t + 1 over 1 .. 3: {mean} at t = {when} (exact 7 at 3): {'ok' if good else 'WRONG'}")
     ok &= good
+    # the momentum balance from the channel's function objects: at the last common time, or the means over the
+    # last `average` seconds; hand-made .dat files whose z columns give channel = -(flux_in + flux_out) - force
+    d = os.path.join(work, "momentum")
+    shutil.rmtree(d, ignore_errors=True)
+    times = [0.2 * k for k in range(11)]
+    noise = [0.0, 0.01, -0.01, 0.02, -0.02, 0.01, -0.01, 0.02, -0.02, 0.01, -0.01]  # zero mean over any pair
+    for folder, name, line in (("inletOutletForce", "force.dat", lambda t: f"{t} (0 0 {-t}) (0 0 0)"),
+                               ("inletMomentum", "surfaceFieldValue.dat", lambda t: f"{t} (0 0 1)"),
+                               ("outletMomentum", "surfaceFieldValue.dat", lambda t: f"{t} (0 0 -2)")):
+        os.makedirs(os.path.join(d, "postProcessing", folder, "0"))
+        with open(os.path.join(d, "postProcessing", folder, "0", name), "w") as f:
+            f.write("# Time value\n" + "".join(line(t) + "\n" for t in times))
+    rows = [{"time": str(t), "Fz_structure": str(1 + t + n)} for t, n in zip(times, noise)]  # channel 1 + t
+    spec = {"force": "inletOutletForce", "flux": ["inletMomentum", "outletMomentum"], "component": "z"}
+    last = summarize.momentum_balance(d, rows, spec)
+    mean = summarize.momentum_balance(d, rows, dict(spec, average=0.4))
+    good = (last[1:3] == (2.0, 1) and abs(last[3] - 2.99) < 1e-12 and abs(last[4] - 3.0) < 1e-12
+            and mean[0] == times[8] and mean[2] == 3 and abs(mean[4] - 2.8) < 1e-12
+            and abs(mean[3] - (2.8 + (-0.02 + 0.01 - 0.01) / 3)) < 1e-12)
+    print(f"momentum balance at the end {last}, mean over the last 0.4 s {mean}: {'ok' if good else 'WRONG'}")
+    ok &= good
     # a checked quantity counts only once the run has reached its measuring window: a short run (the test's
     # END) reports it as not reached, a run that reached it must be within the accepted range
     import json

@@ -18,8 +18,9 @@ class Acceleration {
   virtual ~Acceleration() = default;
   /// Next input of the current window from the input `d` and the structure's output `dTilde`.
   virtual Eigen::VectorXd compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) = 0;
-  /// The window was accepted: the next compute() is the first iteration of a new window.
-  virtual void onTimeWindowComplete() = 0;
+  /// The window was accepted (`converged`: within the tolerance, or stopped at maxIterations): the next
+  /// compute() is the first iteration of a new window.
+  virtual void onTimeWindowComplete(bool converged) = 0;
   virtual std::string name() const = 0;
 };
 

@@ -122,7 +122,7 @@ void CouplingScheme::completeWindow(const Eigen::VectorXd& loads, const Eigen::V
   if (history_.size() > 3) history_.pop_back();
   iteration_ = 0;
   windowComplete_ = true;
-  if (acceleration_ && config_.kind == SchemeKind::Implicit) acceleration_->onTimeWindowComplete();
+  if (acceleration_ && config_.kind == SchemeKind::Implicit) acceleration_->onTimeWindowComplete(converged);
   input_ = predictor();
 }
 

@@ -146,8 +146,12 @@ case "$mode" in
     # fixed point, and the decomposed linear solvers and IQN-ILS reach it along different paths. (The
     # adapter's own parallel test, staggered coupling, is held to 1e-5.) A lost or doubled part of the
     # interface on one rank changes the answer by far more.
-    # The case's tolerance, or the adapter's default where the case leaves it (sail-2d).
+    # The case's tolerance, or the adapter's default where the case leaves it (sail-2d) -- but not below 5e-5:
+    # the decomposed fluid solvers (processor-local DIC) leave a floor that a tighter coupling tolerance does
+    # not lower (cavity-membrane-2d, mid-point at 0.2 / 1 s: 2.5e-5 / 1.0e-5 at tolerance 1e-4, 2.0e-5 /
+    # 0.9e-5 at 1e-6; docs/VALIDATION.md).
     tol=$(foamDictionary -entry functions/fsi/tolerance -value system/controlDict 2>/dev/null || echo 1e-5)
+    tol=$(/usr/bin/python3 -c "import sys; print(max(float(sys.argv[1]), 5e-5))" "$tol")
     close "$(last_probe "$work/serial/$name")" "$(last_probe .)" "$tol" || fail "serial and 2-rank answers differ"
     ;;
   tracked)

@@ -63,7 +63,7 @@ TEST(CouplingAcceleration, AitkenIsExactSecantOnAScalarLinearMap) {
   EXPECT_NEAR(d(0), 1.0 / (1.0 + mu), 1e-12);
   EXPECT_NEAR(a.omega(), 1.0 / (1.0 + mu), 1e-12);
   // The next window starts from the smaller of the last factor and the initial one.
-  a.onTimeWindowComplete();
+  a.onTimeWindowComplete(true);
   a.compute(d, d + VectorXd::Ones(1));
   EXPECT_NEAR(a.omega(), 1.0 / (1.0 + mu), 1e-12);
 }
@@ -131,7 +131,7 @@ TEST(CouplingAcceleration, IqnIlsReuseCarriesTheJacobianToTheNextWindow) {
       if ((dt - d).norm() <= 1e-10 * dt.norm() || it > 100) break;
       d = acc.compute(d, dt);
     }
-    acc.onTimeWindowComplete();
+    acc.onTimeWindowComplete(true);
     return it;
   };
   IqnIlsOptions o;
@@ -146,6 +146,67 @@ TEST(CouplingAcceleration, IqnIlsReuseCarriesTheJacobianToTheNextWindow) {
   EXPECT_LE(secondReuse, 3);
   EXPECT_LT(secondReuse, first);
   EXPECT_GT(secondFresh, secondReuse);
+}
+
+namespace {
+// Window 1 iterates d~ = 0.999 d + b1 (a slow mode: the residual changes a thousandth as much as the output,
+// and the quasi-Newton steps are about a thousand residuals long, legitimately); window 2 iterates
+// d~ = -2 d + b2 (added-mass-like) with window 1's columns reused. Returns window 2's iterations to 1e-10,
+// its longest step in residuals, and the final d.
+struct StaleReuseRun {
+  int iterations = 0;
+  double longestStep = 0;
+  VectorXd d;
+};
+StaleReuseRun runStaleReuse(IqnIls& acc, bool firstConverged) {
+  const int n = 4;
+  VectorXd d = VectorXd::Zero(n);
+  const VectorXd b1 = VectorXd::LinSpaced(n, 1.0, 2.0);
+  for (int it = 0; it < 8; ++it) d = acc.compute(d, 0.999 * d + b1);
+  acc.onTimeWindowComplete(firstConverged);
+  const VectorXd b2 = VectorXd::LinSpaced(n, -1.0, 3.0);
+  StaleReuseRun out;
+  for (; out.iterations < 60; ++out.iterations) {
+    const VectorXd dt = -2.0 * d + b2;
+    if ((dt - d).norm() <= 1e-10 * dt.norm()) break;
+    const VectorXd next = acc.compute(d, dt);
+    out.longestStep = std::max(out.longestStep, (next - d).norm() / (dt - d).norm());
+    d = next;
+  }
+  out.d = d;
+  return out;
+}
+}  // namespace
+
+TEST(CouplingAcceleration, IqnIlsDropsReusedColumnsThatAskForAHugeStep) {
+  IqnIlsOptions o;
+  o.reuseSteps = 2;
+  o.relaxFirstIteration = false;
+  o.maxStepRatio = 1e300;  // unguarded: the stale columns' step is a thousand residuals long
+  IqnIls unguarded(o);
+  const StaleReuseRun bad = runStaleReuse(unguarded, true);
+  EXPECT_GT(bad.longestStep, 500.0);
+
+  o.maxStepRatio = 10.0;
+  IqnIls guarded(o);
+  const StaleReuseRun good = runStaleReuse(guarded, true);
+  EXPECT_EQ(guarded.safeguardedSteps(), 1);
+  EXPECT_LE(good.longestStep, 10.0);
+  EXPECT_LT(good.iterations, 10);
+  EXPECT_LT((good.d - VectorXd::LinSpaced(4, -1.0, 3.0) / 3.0).norm(), 1e-9);  // the fixed point b2 / 3
+}
+
+TEST(CouplingAcceleration, IqnIlsReusesNothingAfterANonConvergedWindow) {
+  // The same windows, the first reported as not converged: the second starts from a relaxed step (no reused
+  // columns), so the step-length guard never has to act.
+  IqnIlsOptions o;
+  o.reuseSteps = 2;
+  o.relaxFirstIteration = false;
+  IqnIls acc(o);
+  const StaleReuseRun run = runStaleReuse(acc, false);
+  EXPECT_EQ(acc.safeguardedSteps(), 0);
+  EXPECT_LE(run.longestStep, 10.0);
+  EXPECT_LT((run.d - VectorXd::LinSpaced(4, -1.0, 3.0) / 3.0).norm(), 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -40,7 +40,7 @@ Eigen::VectorXd Aitken::compute(const Eigen::VectorXd& d, const Eigen::VectorXd&
   return d + omega_ * r;
 }
 
-void Aitken::onTimeWindowComplete() {
+void Aitken::onTimeWindowComplete(bool /*converged*/) {
   firstWindow_ = false;
   iteration_ = 0;
 }

@@ -19,7 +19,7 @@ class Aitken final : public Acceleration {
  public:
   explicit Aitken(AitkenOptions options = {});
   Eigen::VectorXd compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) override;
-  void onTimeWindowComplete() override;
+  void onTimeWindowComplete(bool converged) override;
   std::string name() const override { return "aitken"; }
   double omega() const { return omega_; }
 

@@ -11,7 +11,7 @@ class ConstantRelaxation final : public Acceleration {
  public:
   explicit ConstantRelaxation(double omega);
   Eigen::VectorXd compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) override;
-  void onTimeWindowComplete() override {}
+  void onTimeWindowComplete(bool /*converged*/) override {}
   std::string name() const override { return "constant"; }
   double omega() const { return omega_; }
 

@@ -16,6 +16,7 @@ IqnIls::IqnIls(IqnIlsOptions options) : opt_(options) {
   if (opt_.maxColumns < 1)
     throw std::invalid_argument(fmt::format("IqnIls: maxColumns = {}, valid: >= 1", opt_.maxColumns));
   if (!(opt_.filterTolerance >= 0)) throw std::invalid_argument("IqnIls: filterTolerance must be >= 0");
+  if (!(opt_.maxStepRatio >= 1)) throw std::invalid_argument("IqnIls: maxStepRatio must be >= 1");
 }
 
 std::string IqnIls::name() const {
@@ -27,7 +28,6 @@ Eigen::VectorXd IqnIls::relax(const Eigen::VectorXd& d, const Eigen::VectorXd& r
 }
 
 Eigen::VectorXd IqnIls::compute(const Eigen::VectorXd& d, const Eigen::VectorXd& dTilde) {
-  const Eigen::Index n = d.size();
   Eigen::VectorXd r = dTilde - d;
   if (iteration_ > 0) {
     current_.v.push_front(r - previousResidual_);
@@ -44,6 +44,22 @@ Eigen::VectorXd IqnIls::compute(const Eigen::VectorXd& d, const Eigen::VectorXd&
   lastColumnsUsed_ = lastColumnsFiltered_ = 0;
   if (first && (opt_.relaxFirstIteration || past_.empty())) return relax(d, r);
 
+  Eigen::VectorXd next = quasiNewtonStep(r, dTilde, true);
+  if (next.size() == 0) return relax(d, r);
+  // This window's own columns are trusted whatever the step's length (a slow mode, |J| near 1, legitimately
+  // asks for steps many residuals long); the reused ones only while the step stays within maxStepRatio |r|.
+  const bool finite = next.allFinite();
+  if (finite && (past_.empty() || (next - d).norm() <= opt_.maxStepRatio * r.norm())) return next;
+  ++safeguardedSteps_;
+  past_.clear();
+  next = quasiNewtonStep(r, dTilde, false);
+  return next.size() != 0 && next.allFinite() ? next : relax(d, r);
+}
+
+Eigen::VectorXd IqnIls::quasiNewtonStep(const Eigen::VectorXd& r, const Eigen::VectorXd& dTilde,
+                                        bool withReused) {
+  const Eigen::Index n = r.size();
+  lastColumnsUsed_ = lastColumnsFiltered_ = 0;
   // Candidate columns newest first: this window, then the reused windows from the newest.
   std::vector<const Eigen::VectorXd*> cv, cw;
   auto take = [&](const Columns& c) {
@@ -54,7 +70,8 @@ Eigen::VectorXd IqnIls::compute(const Eigen::VectorXd& d, const Eigen::VectorXd&
     }
   };
   take(current_);
-  for (const Columns& c : past_) take(c);
+  if (withReused)
+    for (const Columns& c : past_) take(c);
 
   // Filter by modified Gram-Schmidt: an older column that adds (almost) nothing to the span of the newer
   // ones would make R ill-conditioned and the coefficients c meaningless.
@@ -71,7 +88,7 @@ Eigen::VectorXd IqnIls::compute(const Eigen::VectorXd& d, const Eigen::VectorXd&
     kept.push_back(i);
   }
   lastColumnsFiltered_ = int(cv.size() - kept.size());
-  if (kept.empty()) return relax(d, r);
+  if (kept.empty()) return {};
 
   Eigen::MatrixXd V(n, Eigen::Index(kept.size())), W(n, Eigen::Index(kept.size()));
   for (std::size_t j = 0; j < kept.size(); ++j) {
@@ -83,8 +100,10 @@ Eigen::VectorXd IqnIls::compute(const Eigen::VectorXd& d, const Eigen::VectorXd&
   return dTilde + W * c;
 }
 
-void IqnIls::onTimeWindowComplete() {
-  if (opt_.reuseSteps > 0) {
+void IqnIls::onTimeWindowComplete(bool converged) {
+  if (!converged)
+    past_.clear();  // neither this window's columns nor the older ones describe where the next one starts
+  else if (opt_.reuseSteps > 0) {
     past_.push_front(std::move(current_));
     while (int(past_.size()) > opt_.reuseSteps) past_.pop_back();
   }

@@ -1,3 +1,5 @@
+#include "IPstream.H"
+#include "OPstream.H"
 #include "fsiInterfacePatch.H"
 #include "globalIndex.H"
 #include "globalMeshData.H"
@@ -28,6 +30,11 @@ fsiInterfacePatch::fsiInterfacePatch(const fvMesh& mesh, label patchID,
   Pstream::gatherList(ownedPoints);
   Pstream::gatherList(faces);
 
+  rankPoints_.setSize(Pstream::nProcs());
+  rankPoints_[Pstream::myProcNo()] = pointToGlobal_;
+  Pstream::gatherList(rankPoints_);
+  if (!Pstream::master()) rankPoints_.clear();
+
   reference_.name = pp.name();
   if (!Pstream::master()) return;
   reference_.points.resize(nGlobal_);
@@ -51,12 +58,10 @@ std::vector<double> fsiInterfacePatch::gatherNodalForces(const vectorField& face
     const vector share = faceForces[f] / scalar(lf[f].size());
     for (const label v : lf[f]) local[v] += share;
   }
-  List<labelList> ids(Pstream::nProcs());
   List<vectorField> values(Pstream::nProcs());
-  ids[Pstream::myProcNo()] = pointToGlobal_;
   values[Pstream::myProcNo()] = local;
-  Pstream::gatherList(ids);
   Pstream::gatherList(values);
+  const List<labelList>& ids = rankPoints_;
   std::vector<double> global;
   if (!Pstream::master()) return global;
   global.assign(3 * std::size_t(nGlobal_), 0.0);
@@ -67,10 +72,23 @@ std::vector<double> fsiInterfacePatch::gatherNodalForces(const vectorField& face
 }
 
 vectorField fsiInterfacePatch::scatterPointValues(const std::vector<double>& global) const {
-  vectorField all(nGlobal_, Zero);
-  if (Pstream::master()) forAll(all, i) all[i] = vector(global[3 * i], global[3 * i + 1], global[3 * i + 2]);
-  Pstream::scatter(all);
-  return vectorField(all, pointToGlobal_);
+  // Each rank gets its own points only: O(interface) data in all, not O(interface x ranks) as a broadcast.
+  auto valuesOf = [&global](const labelList& ids) {
+    vectorField v(ids.size());
+    forAll(ids, i) v[i] = vector(global[3 * ids[i]], global[3 * ids[i] + 1], global[3 * ids[i] + 2]);
+    return v;
+  };
+  if (!Pstream::parRun()) return valuesOf(pointToGlobal_);
+  if (Pstream::master()) {
+    for (label proc = 1; proc < Pstream::nProcs(); ++proc) {
+      OPstream toProc(Pstream::commsTypes::scheduled, proc);
+      toProc << valuesOf(rankPoints_[proc]);
+    }
+    return valuesOf(pointToGlobal_);
+  }
+  IPstream fromMaster(Pstream::commsTypes::scheduled, Pstream::masterNo());
+  vectorField mine(fromMaster);
+  return mine;
 }
 
 }  // namespace Foam

@@ -12,8 +12,13 @@
 namespace fsi::test {
 
 /// An empty output folder for one test under the build tree (per test, so parallel ctest runs do not share).
+/// ctest runs every test in a process of its own, in parallel, so a folder shared by two tests (a helper's
+/// fixed name) would be emptied by one while the other writes into it: the folder sits under the test's name.
 inline std::filesystem::path outDir(const std::string& name) {
-  const std::filesystem::path d = std::filesystem::path(FSI_BINARY_DIR) / "test-output" / name;
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string test =
+      info != nullptr ? std::string(info->test_suite_name()) + "." + info->name() : std::string("no-test");
+  const std::filesystem::path d = std::filesystem::path(FSI_BINARY_DIR) / "test-output" / test / name;
   std::filesystem::remove_all(d);
   return d;
 }

@@ -53,7 +53,10 @@ std::string replace(std::string s, const std::string& from, const std::string& t
 }
 
 fs::path tempDir(const std::string& name) {
-  const fs::path d = fs::path(FSI_BINARY_DIR) / "test-output" / name;
+  // Under the test's own name: ctest runs the tests in parallel processes (see fsi::test::outDir).
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path d = fs::path(FSI_BINARY_DIR) / "test-output" /
+                     (std::string(info->test_suite_name()) + "." + info->name()) / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

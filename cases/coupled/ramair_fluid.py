@@ -16,6 +16,10 @@ Usage (run by the case's Allrun; /usr/bin/python3, standard library only):
                                               snappyHexMesh, from constant/fluidSettings.json
   ramair_fluid.py summary CASE                summary.json from the logs, postProcessing/ and constant/polyMesh
   ramair_fluid.py patch-area CASE PATCH       area of a boundary patch of constant/polyMesh (ASCII)
+  ramair_fluid.py mirror-check CASE           mirror_mesh yes, before mirrorMesh: every point of the patch
+                                              `mirror` lies on the plane y = 0
+  ramair_fluid.py mirror-finish CASE          after mirrorMesh: the patch `mirror` has no faces left (all
+                                              merged); removes it from constant/polyMesh/boundary
 
 Why a generator rather than static dictionaries edited with foamDictionary/sed: the dictionaries depend on the
 wing's size and position (domain, refinement boxes, locationInMesh outside the body, reference area), on
@@ -115,6 +119,10 @@ SETTINGS = {
     "stl_chordwise_points": ("int", 60, 0, 1000,
                              "the fluid's skin: chordwise points of the wing generator (0: the scene's own)"),
     "stl_span_divisions": ("int", 6, 0, 100, "the fluid's skin: span divisions per cell (0: the scene's own)"),
+    "mirror_mesh": (["no", "yes"], "no", None, None,
+                    "yes: snappyHexMesh meshes the half y >= 0 and mirrorMesh adds its mirror image, so the left and "
+                    "right cells are exact mirror images (a whole snapped mesh is not mirror-symmetric: its cells "
+                    "at the right trailing edge were the ones that folded; docs/RAMAIR.md)"),
     "upstream": ("float", 8.0, 2.0, 100.0, "domain: chords upstream of the wing"),
     "downstream": ("float", 16.0, 3.0, 200.0, "domain: chords downstream of the wing"),
     "lateral": ("float", 8.0, 2.0, 100.0, "domain: chords beyond the tips, above and below the wing"),
@@ -340,15 +348,35 @@ def write_case(settings_path, stl_path, case):
     lo, hi = geo["min"], geo["max"]
     bmin, bmax, n = domain(geo, s, d["h0"])
     sysd, cons = os.path.join(case, "system"), os.path.join(case, "constant")
+    mirror = s["mirror_mesh"] == "yes"
+    if mirror:
+        # The half y >= 0, its far side as far out as the whole box's; mirrorMesh adds the other half.
+        span = hi[1] - lo[1]
+        if abs(hi[1] + lo[1]) > 1e-6 * span:
+            raise InputError(f"{settings_path}: mirror_mesh yes needs a wing symmetric about y = 0; the skin "
+                             f"{stl_path} spans y = {lo[1]:.6g} .. {hi[1]:.6g}")
+        n[1] = max(1, math.ceil((hi[1] + s["lateral"] * c) / d["h0"]))
+        bmin[1], bmax[1] = 0.0, n[1] * d["h0"]
 
     verts = [(bmin[0], bmin[1], bmin[2]), (bmax[0], bmin[1], bmin[2]), (bmax[0], bmax[1], bmin[2]),
              (bmin[0], bmax[1], bmin[2]), (bmin[0], bmin[1], bmax[2]), (bmax[0], bmin[1], bmax[2]),
              (bmax[0], bmax[1], bmax[2]), (bmin[0], bmax[1], bmax[2])]
+    if mirror:
+        what = ("// The half y >= 0 of the background box around the wing, cells of one chord; `mirror` (y = 0)\n"
+                "// disappears when mirrorMesh adds the other half, every other outer face is the far field.\n")
+        patches = ("  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (3 7 6 2)); }\n"
+                   "  mirror { type patch; faces ((0 1 5 4)); }\n")
+        write(os.path.join(sysd, "mirrorMeshDict"), "dictionary", "mirrorMeshDict", src,
+              "// The half mesh's mirror image about y = 0; the faces on the plane become internal faces.\n"
+              "planeType pointAndNormal;\npointAndNormalDict { point (0 0 0); normal (0 1 0); }\n"
+              "planeTolerance 1e-6;\n")
+    else:
+        what = "// Background box around the wing, cells of one chord; every outer face is the far field.\n"
+        patches = "  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }\n"
     write(os.path.join(sysd, "blockMeshDict"), "dictionary", "blockMeshDict", src,
-          "// Background box around the wing, cells of one chord; every outer face is the far field.\n"
-          "scale 1;\nvertices\n(\n" + "".join(f"  {v3(v)}\n" for v in verts) + ");\n"
+          what + "scale 1;\nvertices\n(\n" + "".join(f"  {v3(v)}\n" for v in verts) + ");\n"
           f"blocks ( hex (0 1 2 3 4 5 6 7) ({n[0]} {n[1]} {n[2]}) simpleGrading (1 1 1) );\n"
-          "boundary\n(\n  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }\n);\n")
+          "boundary\n(\n" + patches + ");\n")
 
     write(os.path.join(sysd, "surfaceFeatureExtractDict"), "dictionary", "surfaceFeatureExtractDict", src,
           "// Sharp edges of the skin (trailing edge, rib seams at the tips) for snappyHexMesh's feature snapping.\n"
@@ -709,8 +737,8 @@ def _foam_list(text, start):
     return int(m.group(1)), m.end()
 
 
-def patch_area(case, patch):
-    mesh = os.path.join(case, "constant", "polyMesh")
+def _patch_range(mesh, patch):
+    """(startFace, nFaces, the boundary file's text, the entry's match) of a patch of constant/polyMesh."""
     with open(os.path.join(mesh, "boundary")) as f:
         b = f.read()
     m = re.search(r"\b" + re.escape(patch) + r"\s*\{([^}]*)\}", b)
@@ -718,6 +746,13 @@ def patch_area(case, patch):
         raise InputError(f"{mesh}/boundary: no patch '{patch}'")
     n_faces = int(re.search(r"nFaces\s+(\d+)", m.group(1)).group(1))
     start = int(re.search(r"startFace\s+(\d+)", m.group(1)).group(1))
+    return start, n_faces, b, m
+
+
+def read_patch(case, patch):
+    """The points and faces of constant/polyMesh (ASCII) and the face range of one patch."""
+    mesh = os.path.join(case, "constant", "polyMesh")
+    start, n_faces, _, _ = _patch_range(mesh, patch)
     with open(os.path.join(mesh, "points")) as f:
         t = f.read()
     n, pos = _foam_list(t, t.index("}") if "FoamFile" in t else 0)
@@ -727,6 +762,45 @@ def patch_area(case, patch):
         t = f.read()
     n, pos = _foam_list(t, t.index("}") if "FoamFile" in t else 0)
     faces = re.findall(r"\d+\(([^()]*)\)", t[pos:])
+    return pts, faces, start, n_faces
+
+
+def mirror_check(case):
+    """Before mirrorMesh: snappyHexMesh must have left every point of the half mesh's `mirror` patch on the
+    plane y = 0, or mirrorMesh would leave those faces unmerged (a slit in the fluid)."""
+    pts, faces, start, n_faces = read_patch(case, "mirror")
+    if n_faces == 0:
+        raise InputError(f"{case}/constant/polyMesh/boundary: the patch 'mirror' has no faces")
+    size = max(abs(x) for p in pts for x in p)
+    for fi in range(start, start + n_faces):
+        for i in faces[fi].split():
+            y = pts[int(i)][1]
+            if abs(y) > 1e-9 * size:
+                raise InputError(f"{case}/constant/polyMesh: point {i} of the patch 'mirror' (face {fi}) lies at "
+                                 f"y = {y:.3g}, off the mirror plane y = 0 (snappyHexMesh moved it)")
+    print(f"mirror plane: {n_faces} faces, every point at y = 0")
+
+
+def mirror_finish(case):
+    """After mirrorMesh: the faces of `mirror` have all become internal faces; the empty patch is removed
+    (the fields need no entry for it)."""
+    mesh = os.path.join(case, "constant", "polyMesh")
+    start, n_faces, b, m = _patch_range(mesh, "mirror")
+    if n_faces != 0:
+        raise InputError(f"{mesh}: mirrorMesh left {n_faces} faces of the patch 'mirror' unmerged")
+    b = b[:m.start()] + b[m.end():]
+    count = re.compile(r"^(\d+)\s*\n\(", re.M)
+    c = count.search(b)
+    if not c:
+        raise InputError(f"{mesh}/boundary: not an ASCII patch list")
+    b = b[:c.start(1)] + str(int(c.group(1)) - 1) + b[c.end(1):]
+    with open(os.path.join(mesh, "boundary"), "w") as f:
+        f.write(b)
+    print("mirror plane: merged, the patch 'mirror' removed")
+
+
+def patch_area(case, patch):
+    pts, faces, start, n_faces = read_patch(case, patch)
     area = 0.0
     for fi in range(start, start + n_faces):
         ids = [int(i) for i in faces[fi].split()]
@@ -949,7 +1023,7 @@ def coupled_summary(case, d):
 
 def main(argv):
     cmds = {"generate-args": 1, "check": 1, "write": 3, "structure": 3, "fields": 1, "summary": 1,
-            "patch-area": 2}
+            "patch-area": 2, "mirror-check": 1, "mirror-finish": 1}
     if len(argv) < 2 or argv[1] not in cmds or len(argv) != 2 + cmds[argv[1]]:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         return 2
@@ -977,6 +1051,10 @@ def main(argv):
             write_fields(*args)
         elif cmd == "summary":
             summary(*args)
+        elif cmd == "mirror-check":
+            mirror_check(*args)
+        elif cmd == "mirror-finish":
+            mirror_finish(*args)
         else:
             area, n = patch_area(*args)
             print(f"{area:.9g} {n}")

@@ -14,6 +14,9 @@
 #          wall functions; mesh_motion laplacian selects displacementLaplacian; locationInMesh is outside
 #   input  bad settings files stop Allrun with exit 2 and FILE:LINE before anything runs; a value that
 #          looks like a shell command is refused and never executed
+#   mirror mirror_mesh yes: every point of the mirrored mesh has its mirror image (the whole snapped mesh does
+#          not), checkMesh OK, the wing's area; points off the plane, an unmerged plane, an off-centre wing
+#          refused
 # Exit 77 (ctest: skipped) when Debian's OpenFOAM binaries are not installed.
 # Usage: run_ramair_fluid_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -uo pipefail
@@ -140,6 +143,80 @@ printf 'speed 15\nmesh_motion rigidfit\nrigid_outer 40\n' > rigidfit.settings
 /usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write rigidfit.settings constant/triSurface/wing.stl rigidfit > rigidfit.log 2>&1 &&
   fail "rigid_outer 40 (past the far field) accepted"
 grep -q "rigid_outer 40 chords reaches the far field" rigidfit.log || { cat rigidfit.log; fail "rigid_outer 40: no message naming the key"; }
+
+# mirror_mesh yes: the half mesh snapped and mirrored. Every point's mirror image about y = 0 is a point of
+# the mesh (the whole snapped mesh above is not mirror-symmetric: the measure can fail), checkMesh OK, the
+# patch `mirror` gone, the wing patch's area the STL's within 1 %. A half mesh with a point off the plane and
+# an unmerged plane are refused; a wing off the plane y = 0 is refused.
+mkdir -p mirror && for f in $case_files; do cp "$src/$f" mirror/; done
+(cd mirror && printf 'mirror_mesh yes\n' >> laminar-ci.settings && ./Allrun -mesh-only > run.log 2>&1) ||
+  { tail -20 mirror/run.log; fail "mirror_mesh yes: Allrun -mesh-only failed"; }
+/usr/bin/python3 - <<'PY' || rc=1
+import json, sys
+sys.path.insert(0, __import__("os").environ["FSI_SHARE_DIR"])
+import ramair_fluid as rf
+def asymmetric(case):
+    pts, _, _, _ = rf.read_patch(case, "wing")
+    size = max(abs(x) for p in pts for x in p)
+    key = lambda p: tuple(round(x / (1e-9 * size)) for x in p)
+    have = {key(p) for p in pts}
+    return len(pts), sum(1 for p in pts if key((p[0], -p[1], p[2])) not in have)
+bad = []
+n_whole, off_whole = asymmetric(".")
+n_mirror, off_mirror = asymmetric("mirror")
+print(f"points without a mirror image about y = 0: whole snapped mesh {off_whole} of {n_whole}, "
+      f"mirrored mesh {off_mirror} of {n_mirror}")
+if off_mirror != 0:
+    bad.append("the mirrored mesh is not mirror-symmetric")
+if off_whole == 0:
+    bad.append("the whole snapped mesh is mirror-symmetric too: the measure cannot tell them apart")
+m = json.load(open("mirror/summary.json"))["mesh"]
+print(f"mirrored: cells {m['cells']}, checkMesh ok {m['ok']}, wing patch {100 * m['area_relative_difference']:+.3f} % "
+      f"of the STL's area")
+if not (m["ok"] and m["failed_checks"] == 0):
+    bad.append("checkMesh does not report the mirrored mesh OK")
+if not abs(m["area_relative_difference"]) < 0.01:
+    bad.append("the mirrored wing patch's area differs from the STL's by 1 % or more")
+if "mirror" in open("mirror/constant/polyMesh/boundary").read():
+    bad.append("the emptied patch 'mirror' is still in the boundary file")
+for b in bad:
+    print("FAIL:", b)
+sys.exit(1 if bad else 0)
+PY
+# The checks around mirrorMesh refuse what they exist for: a half mesh (the background box alone) with a
+# point moved off the plane, and a plane whose faces were not merged.
+rm -rf mirror/constant/polyMesh && (cd mirror && blockMesh > log.blockMesh.half 2>&1) || fail "blockMesh (half box) failed"
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" mirror-finish mirror > mirror.log 2>&1 &&
+  fail "mirror-finish accepted a plane with its faces"
+grep -q "left [0-9]* faces of the patch 'mirror' unmerged" mirror.log || { cat mirror.log; fail "mirror-finish: no message"; }
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" mirror-check mirror > mirror.log 2>&1 || { cat mirror.log; fail "mirror-check refused the flat box"; }
+/usr/bin/python3 - <<'PY' || fail "could not move a point of the plane"
+import re
+f = "mirror/constant/polyMesh/points"
+t = open(f).read()
+# the first point of the half box is a corner on the plane y = 0: move it off
+m = re.compile(r"\(([-0-9.e+]+) ([-0-9.e+]+) ([-0-9.e+]+)\)").search(t, t.index("}"))
+assert float(m.group(2)) == 0.0, m.group(0)
+open(f, "w").write(t[:m.start()] + f"({m.group(1)} 1e-4 {m.group(3)})" + t[m.end():])
+PY
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" mirror-check mirror > mirror.log 2>&1 &&
+  fail "mirror-check accepted a point off the plane"
+grep -q "point 0 of the patch 'mirror' (face [0-9]*) lies at y = 0.0001, off the mirror plane" mirror.log ||
+  { cat mirror.log; fail "mirror-check: no message naming the point"; }
+/usr/bin/python3 - <<'PY' || fail "could not write a shifted STL"
+t = open("constant/triSurface/wing.stl").read().split("\n")
+out = []
+for line in t:
+    w = line.split()
+    if w and w[0] == "vertex":
+        line = f"vertex {w[1]} {float(w[2]) + 0.01} {w[3]}"
+    out.append(line)
+open("shifted.stl", "w").write("\n".join(out))
+PY
+printf 'speed 15\nmirror_mesh yes\n' > mirror.settings
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write mirror.settings shifted.stl shifted > mirror.log 2>&1 &&
+  fail "mirror_mesh yes accepted a wing off the plane y = 0"
+grep -q "mirror_mesh yes needs a wing symmetric about y = 0" mirror.log || { cat mirror.log; fail "shifted wing: no message"; }
 
 [ $rc -eq 0 ] && echo "PASS ramair-kt fluid" || echo "FAIL ramair-kt fluid"
 exit $rc

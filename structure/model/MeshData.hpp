@@ -17,6 +17,10 @@ struct MeshData {
   std::vector<std::array<int, 2>> lines;      ///< cables, indices into points
   std::vector<long> triangleTags;             ///< user-facing element ids, one per triangle
   std::vector<long> lineTags;                 ///< user-facing element ids, one per line
+  /// Rest lengths of the lines [m] where they differ from the reference distance of their end points (a line
+  /// rigged with slack); empty, or 0 for a line: the reference distance. Only generators set them (a Gmsh
+  /// file has no place for them).
+  std::vector<double> lineRestLength;
   std::map<std::string, std::vector<int>> nodeGroups;      ///< named node groups (indices into points)
   std::map<std::string, std::vector<int>> triangleGroups;  ///< named triangle groups (indices into triangles)
   std::map<std::string, std::vector<int>> lineGroups;      ///< named line groups (indices into lines)

@@ -258,6 +258,14 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
       throw InputError(
           fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e), N.tag[a], N.tag[b]));
     const CableMaterial& mat = model.cableMaterials[r.material];
+    if (std::size_t(r.local) < md.lineRestLength.size() && md.lineRestLength[std::size_t(r.local)] != 0.0) {
+      // A line rigged longer than the distance of its ends: slack (no tension) until stretched to it.
+      const double L0 = md.lineRestLength[std::size_t(r.local)];
+      if (!(std::isfinite(L0) && L0 > 0))
+        throw InputError(
+            fmt::format("{} has rest length {} (must be positive and finite)", model.describeCable(e), L0));
+      L = L0;
+    }
     C.restLength[e] = L;
     C.invWaveSpeed[e] = std::sqrt(mat.density / mat.young);
     if (C.blocks.empty() || C.blocks.back().material != r.material) {

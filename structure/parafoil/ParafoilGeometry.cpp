@@ -74,6 +74,7 @@ void validate(const ParafoilParams& q) {
     invalid("brake_points", fmt::format("is {}; valid: 0 to {} (the ribs of one half-span)", q.brakePoints,
                                         (q.cells + 1) / 2));
   requireRange("toggle_fraction", q.toggleFraction, 0, 1, false, true);
+  requireRange("brake_slack", q.brakeSlack, 0, q.span, false, true);
   requireRange("riser_length", q.riserLength, 0, inf, false, true);
   const double count = 2.0 * q.chordwisePoints * (double(q.cells) * q.spanDivisions + 1) * 2.0;
   if (count > 5e7)
@@ -374,7 +375,24 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
       const int toggle = addPoint(lerp(conf, mean, q.toggleFraction));
       const std::string g = side == 0 ? "brakes_left" : "brakes_right";
       m.nodeGroups[side == 0 ? "toggle_left" : "toggle_right"] = {toggle};
-      for (int p : tePoints) chain(p, toggle, {"brakes", g});
+      for (int p : tePoints) {
+        const std::size_t first = m.lines.size();
+        chain(p, toggle, {"brakes", g});
+        if (q.brakeSlack > 0) {
+          // Each cable of the line longer in proportion, so the line's rest length is its span plus the
+          // slack.
+          const P3 a = m.points[p], b = m.points[toggle];
+          const double span = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                                        (b[2] - a[2]) * (b[2] - a[2]));
+          m.lineRestLength.resize(m.lines.size(), 0.0);
+          for (std::size_t e = first; e < m.lines.size(); ++e) {
+            const P3 u = m.points[m.lines[e][0]], v = m.points[m.lines[e][1]];
+            const double len = std::sqrt((v[0] - u[0]) * (v[0] - u[0]) + (v[1] - u[1]) * (v[1] - u[1]) +
+                                         (v[2] - u[2]) * (v[2] - u[2]));
+            m.lineRestLength[e] = len * (span + q.brakeSlack) / span;
+          }
+        }
+      }
     }
   }
   m.lineGroups["brakes"];
@@ -401,6 +419,7 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
   std::iota(m.triangleTags.begin(), m.triangleTags.end(), 1L);
   m.lineTags.resize(m.lines.size());
   std::iota(m.lineTags.begin(), m.lineTags.end(), 1L);
+  if (!m.lineRestLength.empty()) m.lineRestLength.resize(m.lines.size(), 0.0);
   return m;
 }
 

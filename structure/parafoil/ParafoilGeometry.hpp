@@ -68,6 +68,10 @@ struct ParafoilParams {
   // Brakes.
   int brakePoints = 3;           ///< trailing-edge points per side (at the outermost ribs); 0 = no brakes
   double toggleFraction = 0.15;  ///< toggle along confluence -> mean brake point
+  /// Extra length of every brake line beyond the distance from its trailing-edge point to the toggle [m]:
+  /// rigged with slack, as real brake lines are, the lines carry nothing until the toggle is drawn down by
+  /// about this much or the canopy moves away from the held toggles (0: taut at the design shape).
+  double brakeSlack = 0.0;
   /// A reinforcement tape (cables, the mesh's cable material) along the trailing edge from tip to tip: a
   /// brake line then pulls the edge down over the span instead of denting the skin at its attachment point.
   bool trailingEdgeTape = false;

@@ -31,6 +31,7 @@ const std::vector<std::string>& parafoilKeys() {
                                              "line_elements",
                                              "brake_points",
                                              "toggle_fraction",
+                                             "brake_slack",
                                              "trailing_edge_tape",
                                              "riser_length"};
   return keys;
@@ -89,6 +90,7 @@ ParafoilParams readParafoilParams(const YamlMap& g, const std::filesystem::path&
   q.lineElements = int(g.integer("line_elements", q.lineElements, positive));
   q.brakePoints = int(g.integer("brake_points", q.brakePoints, {0, 10000}));
   q.toggleFraction = g.number("toggle_fraction", q.toggleFraction);
+  q.brakeSlack = g.number("brake_slack", q.brakeSlack);
   q.trailingEdgeTape = g.boolean("trailing_edge_tape", q.trailingEdgeTape);
   q.riserLength = g.number("riser_length", q.riserLength);
   g.finish(parafoilKeys());

@@ -8,7 +8,9 @@
 #include <set>
 #include <tuple>
 
+#include "structure/elements/CableForces.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/model/Model.hpp"
 #include "structure/parafoil/AirfoilSection.hpp"
 #include "structure/parafoil/ParafoilGeometry.hpp"
 #include "structure/scene/Scene.hpp"
@@ -16,6 +18,7 @@
 using fsi::InputError;
 using fsi::structure::MeshData;
 using namespace fsi::structure::parafoil;
+using namespace fsi::structure;
 
 namespace {
 
@@ -244,6 +247,77 @@ TEST(ParafoilGeometry, TrailingEdgeTapeJoinsTheTrailingEdgeFromTipToTip) {
   EXPECT_GT(total, std::hypot(first[0] - last[0], first[1] - last[1], first[2] - last[2]));  // a curve
   EXPECT_LT(total, q.span * (1 + 1e-12));  // the polygon inscribed in the span's arc
   EXPECT_EQ(m.points.size(), buildParafoil(untwisted(24, 2)).points.size());
+}
+
+// Brake lines rigged with slack: each line's rest length is the distance from its trailing-edge point to the
+// toggle plus brake_slack (every cable of it longer in proportion), the other lines keep the distance of
+// their ends. In the model, a line pulled straight from its trailing-edge point to a toggle moved by d
+// carries nothing while the stretch is within the slack and EA (s - s0 - slack) / (s0 + slack) beyond it (the
+// tension-only law on the rest length; s the new span, s0 the design one): the slack is in the model, not
+// just in the mesh.
+TEST(ParafoilGeometry, BrakeSlackLengthensEachBrakeLineByTheSlack) {
+  ParafoilParams q = untwisted(24, 2);
+  EXPECT_TRUE(buildParafoil(q).lineRestLength.empty());  // no slack: the reference distances
+  q.brakeSlack = 0.05;
+  const MeshData m = buildParafoil(q);
+  ASSERT_EQ(m.lineRestLength.size(), m.lines.size());
+  auto length = [&](int a, int b) {
+    const auto &u = m.points[std::size_t(a)], &v = m.points[std::size_t(b)];
+    return std::hypot(u[0] - v[0], u[1] - v[1], u[2] - v[2]);
+  };
+  std::set<int> brakes(m.lineGroups.at("brakes").begin(), m.lineGroups.at("brakes").end());
+  for (std::size_t e = 0; e < m.lines.size(); ++e) {
+    if (!brakes.count(int(e))) {
+      EXPECT_EQ(m.lineRestLength[e], 0.0) << e;
+    }
+  }
+  // The brake group lists each line's cables in order, from its trailing-edge point to the toggle.
+  const auto& g = m.lineGroups.at("brakes");
+  ASSERT_EQ(g.size(), std::size_t(2 * q.brakePoints * q.lineElements));
+  const MembraneMaterial fabric{"fabric", 1.3e9, 0.3, 7.6e-5, 530, true};
+  const CableMaterial line{"line", 4.3e10, 3.0e-6, 906};
+  MeshInput in;
+  in.mesh = m;
+  in.membraneMaterial = 0;
+  in.cableMaterial = 0;
+  const Model model = buildModel({in}, {fabric}, {line});
+  const double EA = line.young * line.area;
+  for (std::size_t k = 0; k < g.size(); k += std::size_t(q.lineElements)) {
+    const int te = m.lines[std::size_t(g[k])][0];
+    const int toggle = m.lines[std::size_t(g[k + std::size_t(q.lineElements) - 1])][1];
+    const double s0 = length(te, toggle);
+    double rest = 0, modelRest = 0;
+    for (int j = 0; j < q.lineElements; ++j) {
+      rest += m.lineRestLength[std::size_t(g[k + std::size_t(j)])];
+      modelRest +=
+          model.cables.restLength[std::size_t(model.meshes[0].line[std::size_t(g[k + std::size_t(j)])])];
+    }
+    EXPECT_NEAR(rest, s0 + q.brakeSlack, 1e-12) << "brake line " << k / q.lineElements;
+    EXPECT_NEAR(modelRest, s0 + q.brakeSlack, 1e-12) << "brake line " << k / q.lineElements;
+    // The line pulled straight to the toggle moved away along it by d: slack at d = 0.03, taut at 0.08.
+    for (const double d : {0.03, 0.08}) {
+      std::vector<double> x = model.nodes.X;
+      const auto& a = m.points[std::size_t(te)];
+      const auto& b = m.points[std::size_t(toggle)];
+      const double s = s0 + d;
+      for (int j = 1; j <= q.lineElements; ++j) {
+        const int node = j == q.lineElements ? toggle : m.lines[std::size_t(g[k + std::size_t(j)])][0];
+        const int i = model.meshes[0].node[std::size_t(node)];
+        for (int c = 0; c < 3; ++c)
+          x[std::size_t(3 * i + c)] =
+              a[std::size_t(c)] + (b[std::size_t(c)] - a[std::size_t(c)]) * s / s0 * j / q.lineElements;
+      }
+      std::vector<double> T;
+      cableTensions(model.cables, x.data(), T);
+      const double expected = EA * std::max(0.0, s - s0 - q.brakeSlack) / (s0 + q.brakeSlack);
+      for (int j = 0; j < q.lineElements; ++j)
+        EXPECT_NEAR(T[std::size_t(model.meshes[0].line[std::size_t(g[k + std::size_t(j)])])], expected,
+                    1e-6 * EA)
+            << "brake line " << k / q.lineElements << ", d " << d << ", cable " << j;
+    }
+  }
+  q.brakeSlack = -0.01;
+  EXPECT_THROW(buildParafoil(q), InputError);
 }
 
 TEST(ParafoilGeometry, BulgedCellsAreCircularArcsBetweenTheRibs) {

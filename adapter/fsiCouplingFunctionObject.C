@@ -303,7 +303,11 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
     if (equilibrium_)
       Info << "equilibrium mode: " << o.integer("equilibriumSteps")
            << " damped pseudo-steps per window (kinetic damping"
-           << (o.text("equilibriumStart") == "carry" ? ", the motion carried across windows" : "") << ")";
+           << (o.text("equilibriumStart") == "carry" ? ", the motion carried across windows" : "");
+    if (equilibrium_ && o.text("equilibriumStart") == "carry" && o.real("equilibriumCarryFrom") > 0)
+      Info << " from t = " << o.real("equilibriumCarryFrom") << " s, from rest before";
+    if (equilibrium_)
+      Info << ")";
     else
       Info << structure_->subcyclesFor(dt) << " structural steps per window of " << dt << " s";
     if (o.real("loadRelaxation") < 1) Info << ", load relaxation " << o.real("loadRelaxation");

@@ -92,6 +92,10 @@ SETTINGS = {
     "equilibrium_start": (["rest", "carry"], "rest", None, None,
                           "equilibrium: each step's relaxation from rest, or carrying the previous step's "
                           "pseudo-motion (the slow swing on the lines converges in fewer steps)"),
+    "carry_after": ("int", 0, 0, 1000000,
+                    "equilibrium_start carry: the first this many coupled steps still relax from rest (the "
+                    "start-up transient dies out before the motion is carried; the adapter's "
+                    "equilibriumCarryFrom)"),
     "load_relaxation": ("float", 1.0, 1e-3, 1.0,
                         "the canopy gets w f + (1 - w) f_previous of the flow's load f (1: off)"),
     "brake_right": ("float", 0.0, 0.0, 2.0,
@@ -183,6 +187,8 @@ def read_settings(path):
     for key in ("rigid_inner", "rigid_outer"):
         if key in where and values["mesh_motion"] != "rigidfit":
             raise InputError(f"{path}:{where[key]}: {key} needs mesh_motion rigidfit")
+    if "carry_after" in where and values["equilibrium_start"] != "carry":
+        raise InputError(f"{path}:{where['carry_after']}: carry_after needs equilibrium_start carry")
     if values["rigid_inner"] >= values["rigid_outer"]:
         line = where.get("rigid_outer", where.get("rigid_inner"))
         raise InputError(f"{path}:{line}: rigid_inner ({values['rigid_inner']:g} chords) must be below rigid_outer "
@@ -517,8 +523,10 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
                          "libs (\"libfsiFoam.so\");\n")
         implicit = (f" tolerance {s['tolerance']:.9g}; maxIterations {s['max_iterations']};"
                     if s["scheme"] == "implicit" else "")
+        carry_from = (f"\n    equilibriumCarryFrom {s['carry_after'] * d['deltaT']:.9g};   // after "
+                      f"{s['carry_after']} steps from rest" if s["carry_after"] > 0 else "")
         mode = (f"structureMode equilibrium; equilibriumSteps {s['equilibrium_steps']}; "
-                f"equilibriumStart {s['equilibrium_start']};"
+                f"equilibriumStart {s['equilibrium_start']};{carry_from}"
                 if s["structure_mode"] == "equilibrium" else
                 f"structureMode timeAccurate; subcycles {s['subcycles']};")
         coupling = f"""\

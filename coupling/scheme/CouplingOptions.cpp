@@ -487,6 +487,12 @@ OptionSchema couplingOptionSchema() {
       "previous step (slow modes, e.g. a canopy swinging on its lines, converge in far fewer steps)");
   equilibriumStart.when = {kEquilibrium};
   coupled.push_back(equilibriumStart);
+  OptionSpec carryFrom = realOption(
+      "equilibriumCarryFrom", "0", Bound{0, true}, std::nullopt,
+      "carry: the steps that start before this time [s] still relax from rest (let a start-up transient die "
+      "out before the motion is carried)");
+  carryFrom.when = {kEquilibrium};
+  coupled.push_back(carryFrom);
   coupled.push_back(realOption("loadRelaxation", "1", Bound{0, false}, Bound{1, true},
                                "the structure gets w f + (1 - w) f_previous of the fluid's load f; 1: off"));
   OptionSpec restore = wordSpec("restoreMeshPoints", OptionType::Switch, "yes", {},
@@ -530,6 +536,7 @@ EquilibriumOptions equilibriumOptions(const OptionValues& values) {
   o.steps = int(values.integer("equilibriumSteps"));
   o.start = values.text("equilibriumStart") == equilibriumStartNames()[1] ? EquilibriumStart::Carry
                                                                           : EquilibriumStart::Rest;
+  o.carryFrom = values.real("equilibriumCarryFrom");
   return o;
 }
 

@@ -32,7 +32,8 @@ Eigen::VectorXd EquilibriumStructure::solve(double t, double dt, const Eigen::Ve
   // The newest load only: the window's start load is what the previous window relaxed under already.
   const Eigen::VectorXd start = stepper_.interfaceDisplacement();
   stepper_.freezeLoads(loadsEnd);
-  const bool carry = opt_.start == EquilibriumStart::Carry;
+  // Half a window's tolerance: the window that starts at carryFrom carries.
+  const bool carry = opt_.start == EquilibriumStart::Carry && t + 0.5 * dt >= opt_.carryFrom;
   // From rest, every window is a fresh relaxation under the new load. Carried over, the pseudo-velocities
   // keep the direction the structure was relaxing in (the load changed by one fluid step only); a
   // kinetic-energy peak still stops them.
@@ -55,7 +56,8 @@ Eigen::VectorXd EquilibriumStructure::solve(double t, double dt, const Eigen::Ve
     last_.lastKinetic = ke;
   }
   last_.steps = opt_.steps;
-  carriedKinetic_ = previous;
+  // A window from rest ends at rest: the first carried window's first step has nothing to compare with.
+  carriedKinetic_ = carry ? previous : 0.0;
   // What is left of the pseudo-motion is not the structure's velocity: from rest, the window ends at rest;
   // carried, it is the next window's start.
   if (!carry) stepper_.stopMotion();

@@ -58,6 +58,10 @@ const std::vector<std::string>& equilibriumStartNames();
 struct EquilibriumOptions {
   int steps = 100;                                  ///< damped pseudo-steps per window (>= 1)
   EquilibriumStart start = EquilibriumStart::Rest;  ///< the window's pseudo-motion from rest or carried over
+  /// Carry: the windows that start before this time still relax from rest. A start-up transient (an
+  /// impulsive inflation) carried across windows builds up a motion the fluid mesh cannot follow; once it
+  /// has died out, carrying converges the slow swing (docs/COUPLING.md, "Coupling to equilibrium").
+  double carryFrom = 0.0;
 };
 
 /// What the last window's relaxation did (one row of coupling.csv in equilibrium mode).

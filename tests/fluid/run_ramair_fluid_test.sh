@@ -50,6 +50,7 @@ bad "keep_side yes" "keep_side needs coupled yes"
 bad "gap_correction maybe" "no, yes"
 bad "rigid_outer 3" "rigid_outer needs mesh_motion rigidfit"
 bad $'rigid_outer 1\nmesh_motion rigidfit\nrigid_inner 2' "must be below rigid_outer"
+bad "carry_after 20" "carry_after needs equilibrium_start carry"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 
@@ -123,6 +124,19 @@ for b in bad:
     print("FAIL:", b)
 print("variant (angle 4, kOmegaSST, laplacian):", "ok" if not bad else "FAILED")
 sys.exit(1 if bad else 0)
+PY
+# carry_after N: the adapter carries the equilibrium pseudo-motion from N steps' time on.
+mkdir -p carry && printf 'speed 15\ncoupled yes\nequilibrium_start carry\ncarry_after 30\n' > carry.settings
+/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write carry.settings constant/triSurface/wing.stl carry > /dev/null ||
+  fail "carry_after: the dictionaries were not written"
+/usr/bin/python3 - <<'PY' || rc=1
+import json, re, sys
+dt = json.load(open("carry/constant/fluidSettings.json"))["derived"]["deltaT"]
+d = open("carry/system/controlDict").read()
+m = re.search(r"equilibriumStart carry;\s*equilibriumCarryFrom ([-+0-9.eE]+);", d)
+ok = m is not None and abs(float(m.group(1)) - 30 * dt) < 1e-9 * 30 * dt
+print(f"carry_after 30: equilibriumCarryFrom {m.group(1) if m else None} for deltaT {dt:.6g} s:", "ok" if ok else "FAILED")
+sys.exit(0 if ok else 1)
 PY
 # mesh_motion rigidfit: libfsiFoam's motion solver with the distances in chords; a ramp reaching the far field
 # is refused naming the key.

@@ -262,6 +262,29 @@ TEST(CouplingEquilibrium, CarriedPseudoMotionConvergesWhatTooFewStepsFromRestOnl
   EXPECT_LT((c.lastVelocity - c.lastStep / kWindow).norm(), 1e-12 * (1.0 + c.lastVelocity.norm()));
 }
 
+TEST(CouplingEquilibrium, CarryFromRelaxesFromRestUntilItsTimeThenCarries) {
+  // The set-up above with the carrying from window 100's end on: the windows up to there are the run from
+  // rest to the last bit (the same arithmetic), the ones after differ, and the carried motion then settles long
+  // before the run from rest does (measured: from rest 395 windows, carried from the start 97).
+  const double h = 1.0 / (kNodes + 1), kappa = 6.0 / (1.0 - h * h);
+  CushionSetup rest, late;
+  rest.relaxation = {1, EquilibriumStart::Rest};
+  late.relaxation = {1, EquilibriumStart::Carry, 100 * kWindow};
+  const CushionRun r = runCushion(StructureMode::Equilibrium, kappa, 1.0, 3000, rest);
+  const CushionRun l = runCushion(StructureMode::Equilibrium, kappa, 1.0, 3000, late);
+  std::printf("1 pseudo-step per window: settled after %d windows from rest, %d carried from window 100\n",
+              r.settled, l.settled);
+  // error[k]: after window k; window 101 starts at 100 windows' time and is the first carried one. It starts
+  // at rest too (window 100 ended at rest) but keeps its motion: window 102 is the first that differs.
+  ASSERT_GT(l.error.size(), 103u);
+  for (std::size_t k = 0; k <= 101; ++k) EXPECT_EQ(l.error[k], r.error[k]) << "window " << k;
+  EXPECT_NE(l.error[102], r.error[102]);
+  ASSERT_GT(r.settled, 0);
+  ASSERT_GT(l.settled, 100);
+  EXPECT_LT(l.settled, r.settled - 100);
+  EXPECT_LT(l.error.back(), kSettled);
+}
+
 TEST(CouplingEquilibrium, LoadRelaxationConvergesAStrongFeedbackThatDivergesWithout) {
   // kappa c = 3: a fully relaxed structure answers the load p with the volume c p, so from window to window
   // p_{k+1} - p* = (1 - omega (1 + kappa c)) (p_k - p*): factor -3 at omega = 1 (the shape oscillates with

@@ -134,7 +134,12 @@ def ramair_section():
             f"level finer, and the structure 1.5× finer; the wall time is the whole `Allrun.parallel` (meshing, "
             f"rigid start, coupled windows, reconstruction, checkMesh, plots). Measured by `{d['command']}` on "
             f"{d['machine']}, finished {d['finished']}, commit {d['commit']}. The coupled wing has not trimmed "
-            f"after its windows (docs/RAMAIR.md): the rows compare the same flow time, not converged states.\n",
+            f"after its windows (docs/RAMAIR.md): the rows compare the same flow time, not converged states."
+            + (" These rows are the main job as it was then (the whole snapped fluid mesh, taut brake lines, 200 "
+               "windows from rest); since 2026-11-28 it runs on the mirrored mesh with slack brake lines, 200 "
+               "windows from rest and 400 carried to its trim, and its finer variants wait for a rerun (the "
+               "fluid-medium one is 1200 windows, about an hour)." if d["finished"] < "2026-11-28" else "")
+            + "\n",
             ramair_resolutions.table(rows)] + ramair_reading(rows) + [
             "![ram-air resolutions](img/ramair_resolutions.png)\n"]
 

@@ -1002,6 +1002,8 @@ def coupled_summary(case, d):
     iters = [int(r["iterations"]) for r in rows]
     hist = {k: [float(r[k]) for r in rows] for k in ("time", "Fx_fluid", "Fz_fluid", "anchor_force_x",
                                                       "anchor_force_z", "residual")}
+    if rows and "chord_pitch_angle" in rows[0]:
+        hist["chord_pitch_angle"] = [float(r["chord_pitch_angle"]) for r in rows]
     lift = dot(fluid, lift_dir)
     drag = dot(fluid, flow_dir)
     smean, smax = last.get("skin_stress_mean", float("nan")), last.get("skin_stress_max", float("nan"))

@@ -126,6 +126,11 @@ P3 lerp(const P3& a, const P3& b, double t) {
   return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
 
+double distance(const P3& a, const P3& b) {
+  return std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                   (b[2] - a[2]) * (b[2] - a[2]));
+}
+
 }  // namespace
 
 MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
@@ -381,16 +386,11 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
         if (q.brakeSlack > 0) {
           // Each cable of the line longer in proportion, so the line's rest length is its span plus the
           // slack.
-          const P3 a = m.points[p], b = m.points[toggle];
-          const double span = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
-                                        (b[2] - a[2]) * (b[2] - a[2]));
+          const double span = distance(m.points[p], m.points[toggle]);
           m.lineRestLength.resize(m.lines.size(), 0.0);
-          for (std::size_t e = first; e < m.lines.size(); ++e) {
-            const P3 u = m.points[m.lines[e][0]], v = m.points[m.lines[e][1]];
-            const double len = std::sqrt((v[0] - u[0]) * (v[0] - u[0]) + (v[1] - u[1]) * (v[1] - u[1]) +
-                                         (v[2] - u[2]) * (v[2] - u[2]));
-            m.lineRestLength[e] = len * (span + q.brakeSlack) / span;
-          }
+          for (std::size_t e = first; e < m.lines.size(); ++e)
+            m.lineRestLength[e] =
+                distance(m.points[m.lines[e][0]], m.points[m.lines[e][1]]) * (span + q.brakeSlack) / span;
         }
       }
     }

@@ -125,14 +125,17 @@ for b in bad:
 print("variant (angle 4, kOmegaSST, laplacian):", "ok" if not bad else "FAILED")
 sys.exit(1 if bad else 0)
 PY
+# write_variant NAME TEXT: the dictionaries of the settings TEXT (NAME.settings) written into NAME/
+write_variant() {
+  mkdir -p "$1" && printf '%s' "$2" > "$1.settings"
+  /usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write "$1.settings" constant/triSurface/wing.stl "$1" > /dev/null ||
+    fail "$1: the dictionaries were not written"
+}
 # carry_after N: the adapter carries the equilibrium pseudo-motion from N steps' time on.
-mkdir -p carry && printf 'speed 15\ncoupled yes\nequilibrium_start carry\ncarry_after 30\n' > carry.settings
-/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write carry.settings constant/triSurface/wing.stl carry > /dev/null ||
-  fail "carry_after: the dictionaries were not written"
+write_variant carry $'speed 15\ncoupled yes\nequilibrium_start carry\ncarry_after 30\n'
 /usr/bin/python3 - <<'PY' || rc=1
 import json, re, sys
-dt = json.load(open("carry/constant/fluidSettings.json"))["derived"]["deltaT"]
-d = open("carry/system/controlDict").read()
+dt, d = json.load(open("carry/constant/fluidSettings.json"))["derived"]["deltaT"], open("carry/system/controlDict").read()
 m = re.search(r"equilibriumStart carry;\s*equilibriumCarryFrom ([-+0-9.eE]+);", d)
 ok = m is not None and abs(float(m.group(1)) - 30 * dt) < 1e-9 * 30 * dt
 print(f"carry_after 30: equilibriumCarryFrom {m.group(1) if m else None} for deltaT {dt:.6g} s:", "ok" if ok else "FAILED")
@@ -140,9 +143,7 @@ sys.exit(0 if ok else 1)
 PY
 # mesh_motion rigidfit: libfsiFoam's motion solver with the distances in chords; a ramp reaching the far field
 # is refused naming the key.
-mkdir -p rigidfit && printf 'speed 15\nmesh_motion rigidfit\nrigid_inner 0.5\nrigid_outer 3\n' > rigidfit.settings
-/usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write rigidfit.settings constant/triSurface/wing.stl rigidfit > /dev/null ||
-  fail "mesh_motion rigidfit: the dictionaries were not written"
+write_variant rigidfit $'speed 15\nmesh_motion rigidfit\nrigid_inner 0.5\nrigid_outer 3\n'
 /usr/bin/python3 - <<'PY' || rc=1
 import json, re, sys
 c = json.load(open("rigidfit/constant/fluidSettings.json"))["wing"]["chord"]

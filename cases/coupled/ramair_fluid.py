@@ -466,7 +466,9 @@ mergeTolerance 1e-6;
                   f"displacementLaplacianCoeffs {{ diffusivity {DIFFUSIVITY[s['motion_diffusivity']]}; }}\n")
     elif s["mesh_motion"] == "rigidfit":
         inner, outer = s["rigid_inner"] * c, s["rigid_outer"] * c
-        clearance = min(min(w_lo - b_lo, b_hi - w_hi) for b_lo, b_hi, w_lo, w_hi in zip(bmin, bmax, lo, hi))
+        # The far field of the whole domain: with mirror_mesh the box's plane y = 0 is no boundary of the fluid.
+        far_lo = [bmin[0], -bmax[1] if mirror else bmin[1], bmin[2]]
+        clearance = min(min(w_lo - b_lo, b_hi - w_hi) for b_lo, b_hi, w_lo, w_hi in zip(far_lo, bmax, lo, hi))
         if not outer < clearance:
             raise InputError(f"{settings_path}: rigid_outer {s['rigid_outer']:g} chords reaches the far field, "
                              f"{clearance / c:.3g} chords from the wing: the far field must stay put")

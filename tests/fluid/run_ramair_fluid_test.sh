@@ -154,6 +154,10 @@ ok = ("motionSolver fsiRigidFitDisplacementLaplacian;" in d and "libfsiFoam.so" 
 print(f"rigidfit: {got} for the chord {c:.5g} m:", "ok" if ok else "FAILED")
 sys.exit(0 if ok else 1)
 PY
+# with mirror_mesh yes the same ramp is accepted: the plane y = 0 of the half box is no far field
+write_variant rigidfit-mirror $'speed 15\nmesh_motion rigidfit\nrigid_inner 0.5\nrigid_outer 3\nmirror_mesh yes\n'
+grep -q "motionSolver fsiRigidFitDisplacementLaplacian;" rigidfit-mirror/constant/dynamicMeshDict ||
+  fail "mirror_mesh yes with rigidfit: no rigid-fit motion solver"
 printf 'speed 15\nmesh_motion rigidfit\nrigid_outer 40\n' > rigidfit.settings
 /usr/bin/python3 "$FSI_SHARE_DIR/ramair_fluid.py" write rigidfit.settings constant/triSurface/wing.stl rigidfit > rigidfit.log 2>&1 &&
   fail "rigid_outer 40 (past the far field) accepted"

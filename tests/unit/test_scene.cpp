@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "TestScenes.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/Simulation.hpp"
@@ -53,11 +54,7 @@ std::string replace(std::string s, const std::string& from, const std::string& t
 }
 
 fs::path tempDir(const std::string& name) {
-  // Under the test's own name: ctest runs the tests in parallel processes (see fsi::test::outDir).
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path d = fs::path(FSI_BINARY_DIR) / "test-output" /
-                     (std::string(info->test_suite_name()) + "." + info->name()) / name;
-  fs::remove_all(d);
+  const fs::path d = fsi::test::outDir(name);  // under the test's own name, emptied
   fs::create_directories(d);
   return d;
 }

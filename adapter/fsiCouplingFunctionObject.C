@@ -300,16 +300,18 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
 
     Info << "[fsi] structure " << sceneGiven.c_str() << ": " << structure_->numInterfaceNodes()
          << " interface nodes, ";
-    if (equilibrium_)
+    if (equilibrium_) {
       Info << "equilibrium mode: " << o.integer("equilibriumSteps")
-           << " damped pseudo-steps per window (kinetic damping"
-           << (o.text("equilibriumStart") == "carry" ? ", the motion carried across windows" : "");
-    if (equilibrium_ && o.text("equilibriumStart") == "carry" && o.real("equilibriumCarryFrom") > 0)
-      Info << " from t = " << o.real("equilibriumCarryFrom") << " s, from rest before";
-    if (equilibrium_)
+           << " damped pseudo-steps per window (kinetic damping";
+      if (o.text("equilibriumStart") == "carry") {
+        Info << ", the motion carried across windows";
+        if (o.real("equilibriumCarryFrom") > 0)
+          Info << " from t = " << o.real("equilibriumCarryFrom") << " s, from rest before";
+      }
       Info << ")";
-    else
+    } else {
       Info << structure_->subcyclesFor(dt) << " structural steps per window of " << dt << " s";
+    }
     if (o.real("loadRelaxation") < 1) Info << ", load relaxation " << o.real("loadRelaxation");
     Info << endl;
     if (implicit_) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -69,6 +70,40 @@ TEST(ElementKinds, CountAndLumpedMassOfAMixedModel) {
   EXPECT_NEAR(c, 1500 * 1e-4 * 3.0, 1e-12 * c);
   EXPECT_EQ(findElementKind("cable")->describe(m, 0).rfind("cable ", 0), 0u);
   EXPECT_EQ(findElementKind("membrane")->describe(m, 0).rfind("triangle ", 0), 0u);
+}
+
+// A mesh's per-line rest lengths (MeshData::lineRestLength, e.g. the parafoil's brake slack) replace the
+// distance of the cable's ends where non-zero; a rest length that is not positive and finite is refused with
+// the cable named.
+TEST(ElementKinds, LineRestLengthsReplaceTheGeometricLengthAndBadOnesNameTheCable) {
+  CableChainParams cp;
+  cp.points = {{0, 0, 0}, {0, 0, -3}};
+  cp.divisions = {3};
+  MeshInput line;
+  line.mesh = cableChain(cp, "line");
+  line.cableMaterial = 0;
+  const std::vector<CableMaterial> cable{CableMaterial{"c", 1e9, 1e-4, 1500}};
+  line.mesh.lineRestLength = {0.0, 1.25, 0.0};  // 0: the geometric length (1 m)
+  Model m = buildModel({line}, {}, cable);
+  ASSERT_EQ(m.cables.count, 3);
+  std::vector<double> rest(m.cables.restLength);
+  std::sort(rest.begin(), rest.end());
+  EXPECT_DOUBLE_EQ(rest[0], 1.0);
+  EXPECT_DOUBLE_EQ(rest[1], 1.0);
+  EXPECT_DOUBLE_EQ(rest[2], 1.25);
+  for (double bad :
+       {-0.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    line.mesh.lineRestLength = {0.0, bad, 0.0};
+    try {
+      buildModel({line}, {}, cable);
+      ADD_FAILURE() << "rest length " << bad << " accepted";
+    } catch (const fsi::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("cable"), std::string::npos) << what;
+      EXPECT_NE(what.find("rest length"), std::string::npos) << what;
+      EXPECT_NE(what.find("must be positive and finite"), std::string::npos) << what;
+    }
+  }
 }
 
 namespace {

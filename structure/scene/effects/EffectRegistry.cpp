@@ -16,15 +16,16 @@ EffectKind nodalForcesEffect();
 EffectKind chordwisePressureEffect();  // PressureTableEffect.cpp
 EffectKind lineDragEffect();           // DragEffects.cpp
 EffectKind bodyDragEffect();           // DragEffects.cpp
+EffectKind bendingEffect();            // BendingEffect.cpp
 
 namespace {
 
 // The table: the built-in kinds first, then the registered ones (registerEffectKind).
 std::vector<EffectKind>& table() {
   static std::vector<EffectKind> kinds{
-      massDampingEffect(),       stiffnessDampingEffect(), bulkViscosityEffect(),
-      gravityEffect(),           pressureEffect(),         nodalForcesEffect(),
-      chordwisePressureEffect(), lineDragEffect(),         bodyDragEffect()};
+      massDampingEffect(), stiffnessDampingEffect(), bulkViscosityEffect(),     gravityEffect(),
+      pressureEffect(),    nodalForcesEffect(),      chordwisePressureEffect(), lineDragEffect(),
+      bodyDragEffect(),    bendingEffect()};
   return kinds;
 }
 

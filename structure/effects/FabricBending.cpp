@@ -1,0 +1,320 @@
+#include "structure/effects/FabricBending.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace fsi::structure {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+inline void sub(const double* a, const double* b, double* r) {
+  r[0] = a[0] - b[0];
+  r[1] = a[1] - b[1];
+  r[2] = a[2] - b[2];
+}
+inline void cross(const double* a, const double* b, double* r) {
+  r[0] = a[1] * b[2] - a[2] * b[1];
+  r[1] = a[2] * b[0] - a[0] * b[2];
+  r[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline double dot(const double* a, const double* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// θ − θ0 in (−π, π]: a hinge folded through the flat-back position stays a small change, not 2π.
+inline double wrapAngle(double d) {
+  if (d > kPi) return d - 2 * kPi;
+  if (d <= -kPi) return d + 2 * kPi;
+  return d;
+}
+
+}  // namespace
+
+double hingeAngle(const double* x1, const double* x2, const double* x3, const double* x4, double* g) {
+  double e[3], a[3], b[3], c[3], d[3], n1[3], n2[3];
+  sub(x4, x3, e);
+  sub(x1, x3, a);
+  sub(x1, x4, b);
+  sub(x2, x4, c);
+  sub(x2, x3, d);
+  cross(a, b, n1);  // normal of (x1, x3, x4)
+  cross(c, d, n2);  // normal of (x2, x4, x3): the same way as n1 when the hinge is flat
+  const double el = std::sqrt(dot(e, e)), n1s = dot(n1, n1), n2s = dot(n2, n2);
+  if (!(el > 0) || !(n1s > 0) || !(n2s > 0)) {
+    if (g != nullptr) std::fill(g, g + 12, 0.0);
+    return 0.0;
+  }
+  double m[3];
+  cross(n2, n1, m);
+  const double theta = std::atan2(dot(m, e) / el, dot(n1, n2));
+  if (g != nullptr) {
+    // ∂θ/∂x1 = |e| n1/|n1|², ∂θ/∂x2 = |e| n2/|n2|², and the edge's two vertices take the rest so that the
+    // four sum to zero (a translation does not turn the hinge) and have no moment (nor does a rotation).
+    const double s1 = el / n1s, s2 = el / n2s;
+    const double a3 = dot(b, e) / el / n1s, b3 = dot(c, e) / el / n2s;  // (x1−x4)·e, (x2−x4)·e
+    const double a4 = -dot(a, e) / el / n1s, b4 = -dot(d, e) / el / n2s;
+    for (int k = 0; k < 3; ++k) {
+      g[k] = s1 * n1[k];
+      g[3 + k] = s2 * n2[k];
+      g[6 + k] = a3 * n1[k] + b3 * n2[k];
+      g[9 + k] = a4 * n1[k] + b4 * n2[k];
+    }
+  }
+  return theta;
+}
+
+namespace {
+
+using V2 = std::array<double, 2>;
+
+// The slope jump across an edge under a uniform curvature E (one of the three unit symmetric 2×2 matrices),
+// for the linear interpolant of z = ½ xᵀ E x over a triangle with 2D vertices q (any orientation): its
+// gradient is E c + ½ Σ_i (q_i − c)ᵀ E (q_i − c) ∇λ_i, c the centroid.
+V2 interpolantSlope(const std::array<V2, 3>& q, int k) {
+  const V2 c{(q[0][0] + q[1][0] + q[2][0]) / 3, (q[0][1] + q[1][1] + q[2][1]) / 3};
+  auto quad = [k](const V2& v) {
+    return k == 0 ? 0.5 * v[0] * v[0] : k == 1 ? v[0] * v[1] : 0.5 * v[1] * v[1];  // ½ vᵀ E_k v
+  };
+  auto apply = [k](const V2& v) -> V2 {  // E_k v
+    return k == 0 ? V2{v[0], 0} : k == 1 ? V2{v[1], v[0]} : V2{0, v[1]};
+  };
+  const double area2 = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]);
+  V2 g = apply(c);
+  for (int i = 0; i < 3; ++i) {
+    const V2& a = q[std::size_t((i + 1) % 3)];
+    const V2& b = q[std::size_t((i + 2) % 3)];
+    const V2 gradLambda{-(b[1] - a[1]) / area2, (b[0] - a[0]) / area2};
+    const double w = quad(V2{q[std::size_t(i)][0] - c[0], q[std::size_t(i)][1] - c[1]});
+    g[0] += w * gradLambda[0];
+    g[1] += w * gradLambda[1];
+  }
+  return g;
+}
+
+bool invert3(const std::array<double, 9>& a, std::array<double, 9>& inv) {
+  const double det = a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
+                     a[2] * (a[3] * a[7] - a[4] * a[6]);
+  double scale = 0;
+  for (double v : a) scale = std::max(scale, std::abs(v));
+  if (!(std::abs(det) > 1e-12 * scale * scale * scale)) return false;
+  inv = {(a[4] * a[8] - a[5] * a[7]) / det, (a[2] * a[7] - a[1] * a[8]) / det,
+         (a[1] * a[5] - a[2] * a[4]) / det, (a[5] * a[6] - a[3] * a[8]) / det,
+         (a[0] * a[8] - a[2] * a[6]) / det, (a[2] * a[3] - a[0] * a[5]) / det,
+         (a[3] * a[7] - a[4] * a[6]) / det, (a[1] * a[6] - a[0] * a[7]) / det,
+         (a[0] * a[4] - a[1] * a[3]) / det};
+  return true;
+}
+
+}  // namespace
+
+FabricBending::FabricBending(std::string label, const std::vector<int>& conn, const std::vector<double>& X,
+                             const std::vector<double>* mass, double rigidity)
+    : label_(std::move(label)), mass_(mass) {
+  // Each edge (lower node, higher node) -> the triangles on it.
+  std::map<std::pair<int, int>, std::vector<int>> edges;
+  const std::size_t nt = conn.size() / 3;
+  auto P = [&](int node) { return &X[3 * std::size_t(node)]; };
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = conn[3 * t + std::size_t(k)], b = conn[3 * t + std::size_t((k + 1) % 3)];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(int(t));
+    }
+  auto third = [&](int t, int a, int b) {
+    for (int k = 0; k < 3; ++k) {
+      const int v = conn[3 * std::size_t(t) + std::size_t(k)];
+      if (v != a && v != b) return v;
+    }
+    return -1;
+  };
+  std::map<std::pair<int, int>, int> hingeOf;
+  for (const auto& [edge, ts] : edges) {
+    if (ts.size() > 2) ++seams_;
+    if (ts.size() != 2) continue;
+    const int i1 = third(ts[0], edge.first, edge.second), i2 = third(ts[1], edge.first, edge.second);
+    hingeOf[edge] = int(theta0_.size());
+    hingeNodes_.insert(hingeNodes_.end(), {i1, i2, edge.first, edge.second});
+    theta0_.push_back(hingeAngle(P(i1), P(i2), P(edge.first), P(edge.second), nullptr));
+  }
+  hingeStiffness_.assign(theta0_.size(), 0.0);
+
+  tris_.resize(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const int* v = &conn[3 * t];
+    double u[3], w[3], n[3];
+    sub(P(v[1]), P(v[0]), u);
+    sub(P(v[2]), P(v[0]), w);
+    cross(u, w, n);
+    const double n2 = std::sqrt(dot(n, n)), ul = std::sqrt(dot(u, u));
+    if (!(n2 > 0) || !(ul > 0)) continue;  // degenerate: no curvature (the model refuses such triangles)
+    double e1[3], e2[3], nh[3], c[3];
+    for (int k = 0; k < 3; ++k) {
+      e1[k] = u[k] / ul;
+      nh[k] = n[k] / n2;
+      c[k] = (P(v[0])[k] + P(v[1])[k] + P(v[2])[k]) / 3;
+    }
+    cross(nh, e1, e2);
+    auto local = [&](const double* p) {
+      double d[3];
+      sub(p, c, d);
+      return V2{dot(d, e1), dot(d, e2)};
+    };
+    const std::array<V2, 3> q{local(P(v[0])), local(P(v[1])), local(P(v[2]))};
+    Triangle& T = tris_[t];
+    std::array<double, 9> A{};
+    for (int e = 0; e < 3; ++e) {
+      const int a = v[e], b = v[(e + 1) % 3], opp = v[(e + 2) % 3];
+      const V2 qa = q[std::size_t(e)], qb = q[std::size_t((e + 1) % 3)], qo = q[std::size_t((e + 2) % 3)];
+      const double el = std::hypot(qb[0] - qa[0], qb[1] - qa[1]);
+      const V2 along{(qb[0] - qa[0]) / el, (qb[1] - qa[1]) / el};
+      V2 out{along[1], -along[0]};  // in-plane normal of the edge, pointing away from the opposite vertex
+      if (out[0] * (qo[0] - qa[0]) + out[1] * (qo[1] - qa[1]) > 0) out = {-out[0], -out[1]};
+      const auto it = hingeOf.find({std::min(a, b), std::max(a, b)});
+      if (it == hingeOf.end()) {
+        // A free edge (or a seam): no curvature across it.
+        for (int k = 0; k < 3; ++k) {
+          const double s = k == 1 ? 2 * out[0] * out[1] : (k == 0 ? out[0] * out[0] : out[1] * out[1]);
+          A[std::size_t(3 * e + k)] = s;
+        }
+        continue;
+      }
+      const int h = it->second;
+      const int r = hingeNodes_[4 * std::size_t(h)] == opp ? hingeNodes_[4 * std::size_t(h) + 1]
+                                                           : hingeNodes_[4 * std::size_t(h)];
+      // The neighbour unfolded about the edge into this triangle's plane.
+      double ar[3], eb[3];
+      sub(P(r), P(a), ar);
+      sub(P(b), P(a), eb);
+      const double ebl = std::sqrt(dot(eb, eb));
+      const double s = dot(ar, eb) / ebl;
+      double perp[3];
+      for (int k = 0; k < 3; ++k) perp[k] = ar[k] - s * eb[k] / ebl;
+      const double d = std::sqrt(dot(perp, perp));
+      const std::array<V2, 3> qn{qa, qb,
+                                 V2{qa[0] + s * along[0] + d * out[0], qa[1] + s * along[1] + d * out[1]}};
+      for (int k = 0; k < 3; ++k) {
+        const V2 gT = interpolantSlope(q, k), gN = interpolantSlope(qn, k);
+        A[std::size_t(3 * e + k)] = out[0] * (gN[0] - gT[0]) + out[1] * (gN[1] - gT[1]);
+      }
+      T.hinge[std::size_t(e)] = h;
+      // The hinge's θ is positive for a bowl open towards n1 of its first opposite vertex's triangle.
+      const int* hn = &hingeNodes_[4 * std::size_t(h)];
+      double m1[3], m2[3], nref[3];
+      sub(P(hn[0]), P(hn[2]), m1);
+      sub(P(hn[0]), P(hn[3]), m2);
+      cross(m1, m2, nref);
+      if (hn[0] != opp) {  // this triangle holds the second opposite vertex: compare with n2
+        sub(P(hn[1]), P(hn[3]), m1);
+        sub(P(hn[1]), P(hn[2]), m2);
+        cross(m1, m2, nref);
+      }
+      T.sign[std::size_t(e)] = dot(nref, nh) >= 0 ? 1.0 : -1.0;
+    }
+    // A maps (s11, s12, s22) to the three edges' angles: rows are edges. B = A⁻¹ maps angles to S.
+    std::array<double, 9> Ainv{};
+    if (!invert3(A, Ainv)) {
+      T.hinge = {-1, -1, -1};
+      continue;
+    }
+    T.B = Ainv;
+    T.weight = rigidity * 0.5 * n2;
+    for (int e = 0; e < 3; ++e) {
+      if (T.hinge[std::size_t(e)] < 0) continue;
+      double k = 0;
+      for (int r = 0; r < 3; ++r)
+        k += (r == 1 ? 2.0 : 1.0) * T.B[std::size_t(3 * r + e)] * T.B[std::size_t(3 * r + e)];
+      hingeStiffness_[std::size_t(T.hinge[std::size_t(e)])] += T.weight * k;
+    }
+  }
+}
+
+void FabricBending::hingeAngles(const double* x, bool gradients) const {
+  const std::size_t nh = theta0_.size();
+  dtheta_.resize(nh);
+  if (gradients) g_.resize(12 * nh);
+  for (std::size_t h = 0; h < nh; ++h) {
+    const int* n = &hingeNodes_[4 * h];
+    const double theta =
+        hingeAngle(&x[3 * n[0]], &x[3 * n[1]], &x[3 * n[2]], &x[3 * n[3]], gradients ? &g_[12 * h] : nullptr);
+    dtheta_[h] = wrapAngle(theta - theta0_[h]);
+  }
+}
+
+std::array<double, 3> FabricBending::curvature(int t, const double* x) const {
+  hingeAngles(x, false);
+  const Triangle& T = tris_[std::size_t(t)];
+  std::array<double, 3> S{0, 0, 0};
+  for (int e = 0; e < 3; ++e) {
+    if (T.hinge[std::size_t(e)] < 0) continue;
+    const double th = T.sign[std::size_t(e)] * dtheta_[std::size_t(T.hinge[std::size_t(e)])];
+    for (int r = 0; r < 3; ++r) S[std::size_t(r)] += T.B[std::size_t(3 * r + e)] * th;
+  }
+  return S;
+}
+
+void FabricBending::addForces(ForceContext& ctx) const {
+  const double* x = ctx.x;
+  double* f = ctx.fint;
+  hingeAngles(x, true);
+  moment_.assign(theta0_.size(), 0.0);
+  double energy = 0;
+  for (const Triangle& T : tris_) {
+    if (T.weight == 0) continue;
+    double th[3] = {0, 0, 0};
+    for (int e = 0; e < 3; ++e)
+      if (T.hinge[std::size_t(e)] >= 0)
+        th[e] = T.sign[std::size_t(e)] * dtheta_[std::size_t(T.hinge[std::size_t(e)])];
+    double S[3];
+    for (int r = 0; r < 3; ++r)
+      S[r] = T.B[std::size_t(3 * r)] * th[0] + T.B[std::size_t(3 * r + 1)] * th[1] +
+             T.B[std::size_t(3 * r + 2)] * th[2];
+    // E_T = ½ w (s11² + 2 s12² + s22²); ∂E/∂S, then ∂E/∂θ = Bᵀ ∂E/∂S.
+    const double dS[3] = {T.weight * S[0], 2 * T.weight * S[1], T.weight * S[2]};
+    if (ctx.wantEnergy) energy += 0.5 * T.weight * (S[0] * S[0] + 2 * S[1] * S[1] + S[2] * S[2]);
+    for (int e = 0; e < 3; ++e) {
+      if (T.hinge[std::size_t(e)] < 0) continue;
+      const double dth =
+          T.B[std::size_t(e)] * dS[0] + T.B[std::size_t(3 + e)] * dS[1] + T.B[std::size_t(6 + e)] * dS[2];
+      moment_[std::size_t(T.hinge[std::size_t(e)])] += T.sign[std::size_t(e)] * dth;
+    }
+  }
+  double w2max = 0;
+  for (std::size_t h = 0; h < theta0_.size(); ++h) {
+    const int* n = &hingeNodes_[4 * h];
+    const double* g = &g_[12 * h];
+    const double m = moment_[h];
+    for (int v = 0; v < 4; ++v)
+      for (int c = 0; c < 3; ++c) f[3 * n[v] + c] += m * g[3 * v + c];
+    if (mass_ != nullptr) {
+      double gn[4], sum = 0;
+      for (int v = 0; v < 4; ++v) sum += gn[v] = std::sqrt(dot(&g[3 * v], &g[3 * v]));
+      for (int v = 0; v < 4; ++v) {
+        const double mv = (*mass_)[std::size_t(n[v])];
+        if (mv > 0) w2max = std::max(w2max, hingeStiffness_[h] * gn[v] * sum / mv);
+      }
+    }
+  }
+  if (ctx.wantEnergy) ctx.strainEnergy += energy;
+  if (w2max > 0) ctx.minStableDt = std::min(ctx.minStableDt, 2.0 / std::sqrt(w2max));
+}
+
+double FabricBending::energy(const double* x) const {
+  hingeAngles(x, false);
+  double E = 0;
+  for (const Triangle& T : tris_) {
+    if (T.weight == 0) continue;
+    double S[3] = {0, 0, 0};
+    for (int e = 0; e < 3; ++e) {
+      if (T.hinge[std::size_t(e)] < 0) continue;
+      const double th = T.sign[std::size_t(e)] * dtheta_[std::size_t(T.hinge[std::size_t(e)])];
+      for (int r = 0; r < 3; ++r) S[r] += T.B[std::size_t(3 * r + e)] * th;
+    }
+    E += 0.5 * T.weight * (S[0] * S[0] + 2 * S[1] * S[1] + S[2] * S[2]);
+  }
+  return E;
+}
+
+}  // namespace fsi::structure

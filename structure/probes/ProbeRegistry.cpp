@@ -19,12 +19,13 @@ ProbeKind pitchAngleProbe();      // PitchAngleProbe.cpp
 ProbeKind appliedLoadProbe();     // ReactionProbe.cpp
 ProbeKind equilibriumProbe();     // EquilibriumProbe.cpp
 ProbeKind laplaceProbe();         // LaplaceProbe.cpp
+ProbeKind foldsProbe();           // FoldsProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {
   static const std::vector<ProbeKind> kinds{displacementProbe(),   positionProbe(),   reactionProbe(),
                                             volumeProbe(),         stressProbe(),     lineTensionProbe(),
                                             reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe(),
-                                            equilibriumProbe(),    laplaceProbe()};
+                                            equilibriumProbe(),    laplaceProbe(),    foldsProbe()};
   return kinds;
 }
 

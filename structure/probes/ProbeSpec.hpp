@@ -43,6 +43,7 @@ struct ProbeSpec {
   std::array<double, 3> direction{0, 0, 0};  ///< laplace: the tangent direction of radius and tension
   int rings = 2;                             ///< laplace: the rings of neighbours the fit and average use
   bool areaWeighted = false;                 ///< stress: the values are σ·A/ΣA, summed (an area mean)
+  double angle = 0;                          ///< folds: the turn [deg] that counts as a fold
 };
 
 }  // namespace fsi::structure

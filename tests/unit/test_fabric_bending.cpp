@@ -14,6 +14,7 @@
 #include "structure/effects/FabricBending.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::structure;
@@ -297,4 +298,46 @@ time: {end: 0.05}
     if ((fb = dynamic_cast<const FabricBending*>(e)) != nullptr) break;
   ASSERT_NE(fb, nullptr);
   EXPECT_GT(fb->energy(s.model->nodes.x.data()), 0.5 * E.strain) << E.strain;
+}
+
+// The `folds` probe counts interior edges turned by more than its angle from the reference: none on the flat
+// sheet or the sheet turned as a whole, the edges along the line a sheet is folded about when the fold is
+// steeper than the angle, none when it is not.
+TEST(FabricBending, FoldsProbeCountsCreasesAgainstTheReference) {
+  const std::string yaml = R"(materials:
+  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}
+meshes:
+  strip:
+    generator: {type: rectangle, size: [1, 0.2], divisions: [4, 2]}
+    material: film
+time: {end: 0.01}
+probes:
+  folds: {type: folds, triangles: strip}
+  steep: {type: folds, triangles: strip, angle: 150}
+)";
+  auto s = fsi::structure::loadSceneFromString(yaml, "case.yaml");
+  auto& N = s.model->nodes;
+  auto probes = fsi::structure::evaluateProbes(s);
+  EXPECT_EQ(probes.at("folds"), 0.0);
+  // Turned as a whole (90° about x): still no fold.
+  for (int n = 0; n < N.count; ++n) {
+    const double y = N.X[3 * n + 1], z = N.X[3 * n + 2];
+    N.x[3 * n + 1] = -z;
+    N.x[3 * n + 2] = y;
+  }
+  EXPECT_EQ(fsi::structure::evaluateProbes(s).at("folds"), 0.0);
+  // The half x > 0 folded up by 120° about the line x = 0: the two edges on that line turn by 120°.
+  for (int n = 0; n < N.count; ++n) {
+    const double x = N.X[3 * n], y = N.X[3 * n + 1];
+    const double a = 120.0 * 3.14159265358979323846 / 180;
+    N.x[3 * n] = x > 1e-9 ? x * std::cos(a) : x;
+    N.x[3 * n + 1] = y;
+    N.x[3 * n + 2] = x > 1e-9 ? x * std::sin(a) : 0.0;
+  }
+  probes = fsi::structure::evaluateProbes(s);
+  EXPECT_EQ(probes.at("folds"), 2.0);
+  EXPECT_EQ(probes.at("steep"), 0.0);
+  EXPECT_NE(sceneError(std::string(yaml) + "  bad: {type: folds, triangles: strip, angle: 180}\n")
+                .find("probes.bad.angle"),
+            std::string::npos);
 }

@@ -1,0 +1,67 @@
+// folds: how many interior edges of a triangle set (edges shared by exactly two of its triangles) have turned
+// by more than `angle` degrees from their reference dihedral angle: creases of a membrane folded over at the
+// scale of its elements, which a fluid mesh moved with it cannot follow (docs/RAMAIR.md). Measured against
+// the reference, so a sharp edge of the design shape (a trailing edge) is no fold.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "structure/effects/FabricBending.hpp"
+#include "structure/probes/ProbeKinds.hpp"
+
+namespace fsi::structure {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const std::vector<std::string> kKeys{"type", "triangles", "angle"};
+
+void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
+  spec.reduce = ProbeReduce::Value;
+  spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
+  spec.angle = p.number("angle", 90.0);
+  if (!(spec.angle > 0 && spec.angle < 180))
+    p.failAt("angle", fmt::format("is {}; valid: between 0 and 180 degrees (exclusive)", spec.angle));
+  p.finish(kKeys);
+  // The hinges, once: the two opposite vertices and the edge, 4 nodes each, into spec.nodes.
+  const auto& conn = sets.model().membranes.conn;
+  std::map<std::pair<int, int>, std::vector<int>> edges;  // edge -> third vertices
+  for (int t : spec.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = conn[3 * std::size_t(t) + std::size_t(k)],
+                b = conn[3 * std::size_t(t) + std::size_t((k + 1) % 3)];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(conn[3 * std::size_t(t) + std::size_t((k + 2) % 3)]);
+    }
+  spec.nodes.clear();
+  for (const auto& [e, third] : edges)
+    if (third.size() == 2) spec.nodes.insert(spec.nodes.end(), {third[0], third[1], e.first, e.second});
+}
+
+void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
+  const Nodes& N = state.scene().model->nodes;
+  const double limit = p.angle * kPi / 180.0;
+  int folds = 0;
+  for (std::size_t h = 0; h + 3 < p.nodes.size(); h += 4) {
+    const int* n = &p.nodes[h];
+    const double now = hingeAngle(&N.x[3 * n[0]], &N.x[3 * n[1]], &N.x[3 * n[2]], &N.x[3 * n[3]], nullptr);
+    const double ref = hingeAngle(&N.X[3 * n[0]], &N.X[3 * n[1]], &N.X[3 * n[2]], &N.X[3 * n[3]], nullptr);
+    double d = std::abs(now - ref);
+    if (d > kPi) d = 2 * kPi - d;
+    if (d > limit) ++folds;
+  }
+  vals.push_back(double(folds));
+}
+
+}  // namespace
+
+ProbeKind foldsProbe() {
+  return {"folds", kKeys,
+          "interior edges of triangles turned by more than `angle` degrees from the reference (element-scale "
+          "creases)",
+          parse, evaluate};
+}
+
+}  // namespace fsi::structure

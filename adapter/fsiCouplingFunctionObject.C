@@ -11,6 +11,7 @@
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/effects/CouplingEffects.hpp"
 #include "coupling/mapping/L2Projection.hpp"
+#include "coupling/mapping/SurfaceSmoothing.hpp"
 #include "coupling/scheme/CouplingOptions.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
 #include "fsiCouplingFunctionObject.H"
@@ -234,6 +235,12 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         if (r.residedPoints > 0)
           Info << ", " << r.residedPoints << " quadrature points moved to their own side of the skin";
         Info << ", set up in " << r.setupSeconds << " s" << endl;
+        if (o.real("smoothingLength") > 0) {
+          smoothing_.emplace_back(
+              new fsi::coupling::SurfaceSmoothing(ip->referenceMesh(), o.real("smoothingLength")));
+          Info << "[fsi] patch " << ip->name() << ": displacement smoothed over " << o.real("smoothingLength")
+               << " m (loads through the transpose)" << endl;
+        }
         if (!r.allMapped()) {
           FatalIOErrorInFunction(dict) << "fsiCoupling: " << r.unmappedTargetNodes << " points of patch "
                                        << ip->name() << " are farther than mapTolerance " << opt.tolerance
@@ -410,8 +417,15 @@ std::vector<double> fsiCoupling::structureLoads(vector& fluidTotal) const {
     const auto g1 = Clock::now();
     tGather_ += seconds(g0, g1);
     if (Pstream::master()) {
-      // Conservative transfer: F_structure = Hᵀ F_fluid has the same total force and virtual work.
-      maps_[i]->applyTranspose(nodal.data(), fs.data(), 3);
+      // Conservative transfer: F_structure = Hᵀ F_fluid has the same total force and virtual work (with a
+      // smoothed displacement, Hᵀ Sᵀ F_fluid: the same).
+      if (!smoothing_.empty()) {
+        smoothed_.resize(nodal.size());
+        smoothing_[i]->applyTranspose(nodal.data(), smoothed_.data(), 3);
+        maps_[i]->applyTranspose(smoothed_.data(), fs.data(), 3);
+      } else {
+        maps_[i]->applyTranspose(nodal.data(), fs.data(), 3);
+      }
       for (std::size_t k = 0; k < loads.size(); ++k) loads[k] += fs[k];
       tLoadProjection_ += seconds(g1, Clock::now());
     }
@@ -450,6 +464,7 @@ void fsiCoupling::sendDisplacement() {
       const Eigen::VectorXd& ds = scheme_->displacement();
       df.assign(3 * std::size_t(interfaces_[i]->nGlobalPoints()), 0.0);
       maps_[i]->apply(ds.data(), df.data(), 3);
+      if (!smoothing_.empty()) smoothing_[i]->apply(df.data(), df.data(), 3);
     }
     const auto s0 = Clock::now();
     tDisplacementProjection_ += seconds(h0, s0);

@@ -111,6 +111,9 @@ SETTINGS = {
     "gap_correction": (["no", "yes"], "no", None, None,
                        "coupled yes: the projection's gapCorrection (carry the displacement across the gap "
                        "between the fluid's and the structure's skins; docs/PROJECTION.md)"),
+    "smoothing_length": ("float", 0.0, 0.0, 1.0,
+                         "coupled yes: the fluid's skin moves with the displacement smoothed over this length [m] "
+                         "(the adapter's smoothingLength): the flow sees a crumpled trailing edge's mean surface"),
     "tolerance": ("float", 1e-3, 1e-12, 0.5, "implicit: relative interface-displacement residual of a step"),
     "max_iterations": ("int", 20, 1, 1000, "implicit: iterations per step at most"),
     "subcycles": ("int", 1, 1, 100000, "structural steps per fluid step at least"),
@@ -202,7 +205,8 @@ def read_settings(path):
                              "the structure's own surface (remove stl_bulge)")
     else:
         # The structure's keys mean nothing to a rigid wing: say so rather than run without them.
-        for key in ("brake_right", "trailing_edge_tape", "equilibrium_start", "keep_side", "gap_correction"):
+        for key in ("brake_right", "trailing_edge_tape", "equilibrium_start", "keep_side", "gap_correction",
+                    "smoothing_length"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} needs coupled yes (the rigid wing has no structure)")
     return values
@@ -543,7 +547,7 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
     scheme {s['scheme']};{implicit}
     {mode}
     loadRelaxation {s['load_relaxation']:.9g}; keepSide {s['keep_side']};
-    gapCorrection {s['gap_correction']};
+    gapCorrection {s['gap_correction']}; smoothingLength {s['smoothing_length']:.9g};
   }}
 """
     def control_dict(libs, fsi, steps, end, every):

@@ -464,6 +464,10 @@ OptionSchema couplingOptionSchema() {
       wordSpec("keepSide", OptionType::Switch, "no", {},
                "projection: on a body wetted from one side, map each fluid point onto the "
                "structure's skin facing its own way (thin trailing edges; docs/PROJECTION.md)"));
+  coupled.push_back(realOption(
+      "smoothingLength", "0", Bound{0, true}, std::nullopt,
+      "[m] the fluid skin moves with the displacement smoothed over this length, the loads go back through "
+      "the transpose (conservative): the flow sees a crumpled membrane's mean surface; 0: off"));
   OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
                                        "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";

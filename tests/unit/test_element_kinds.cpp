@@ -72,16 +72,26 @@ TEST(ElementKinds, CountAndLumpedMassOfAMixedModel) {
   EXPECT_EQ(findElementKind("membrane")->describe(m, 0).rfind("triangle ", 0), 0u);
 }
 
-// A mesh's per-line rest lengths (MeshData::lineRestLength, e.g. the parafoil's brake slack) replace the
-// distance of the cable's ends where non-zero; a rest length that is not positive and finite is refused with
-// the cable named.
-TEST(ElementKinds, LineRestLengthsReplaceTheGeometricLengthAndBadOnesNameTheCable) {
+namespace {
+
+// Three 1 m cables hanging from the origin (material 0).
+MeshInput verticalLine() {
   CableChainParams cp;
   cp.points = {{0, 0, 0}, {0, 0, -3}};
   cp.divisions = {3};
   MeshInput line;
   line.mesh = cableChain(cp, "line");
   line.cableMaterial = 0;
+  return line;
+}
+
+}  // namespace
+
+// A mesh's per-line rest lengths (MeshData::lineRestLength, e.g. the parafoil's brake slack) replace the
+// distance of the cable's ends where non-zero; a rest length that is not positive and finite is refused with
+// the cable named.
+TEST(ElementKinds, LineRestLengthsReplaceTheGeometricLengthAndBadOnesNameTheCable) {
+  MeshInput line = verticalLine();
   const std::vector<CableMaterial> cable{CableMaterial{"c", 1e9, 1e-4, 1500}};
   line.mesh.lineRestLength = {0.0, 1.25, 0.0};  // 0: the geometric length (1 m)
   Model m = buildModel({line}, {}, cable);
@@ -160,12 +170,7 @@ meshes:
 // meshes and the whole material table) and finds it again by its name: the point mass, from what its mesh key
 // left in the mesh input.
 TEST(ElementKinds, AKindBuildsItsOwnBlockFromTheMeshes) {
-  CableChainParams cp;
-  cp.points = {{0, 0, 0}, {0, 0, -3}};
-  cp.divisions = {3};
-  MeshInput line;
-  line.mesh = cableChain(cp, "line");
-  line.cableMaterial = 0;
+  MeshInput line = verticalLine();
   line.kindInputs["point_mass"] = PointMassInput{{3, 0}};
   MaterialTable table;
   table.cable = {CableMaterial{"c", 1e9, 1e-4, 1500}};

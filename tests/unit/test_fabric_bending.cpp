@@ -260,18 +260,24 @@ TEST(FabricBending, SceneEntryIsCheckedAtItsKey) {
   EXPECT_NE(e.find("rigidity"), std::string::npos) << e;
 }
 
+namespace {
+
+// A film strip 1 m × 0.2 m centred on the origin, nx × ny cells (the rectangle generator's).
+std::string stripScene(int nx, int ny) {
+  return "materials:\n  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: "
+         "1000}\n"
+         "meshes:\n  strip:\n    generator: {type: rectangle, size: [1, 0.2], divisions: [" +
+         std::to_string(nx) + ", " + std::to_string(ny) + "]}\n    material: film\n";
+}
+
+}  // namespace
+
 // In explicit dynamics the bending energy is part of the strain energy: a strip held at both ends and pushed
 // across at mid-span (deflections of micrometres, so bending, not stretching, takes the work) vibrates
 // undamped; the energy balance closes to 1e-6, the strain energy equals the internal forces' work, and
 // bending holds most of it.
 TEST(FabricBending, ExplicitDynamicsKeepsTheEnergyBalance) {
-  const std::string yaml = R"(materials:
-  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}
-meshes:
-  strip:
-    generator: {type: rectangle, size: [1, 0.2], divisions: [20, 4]}
-    material: film
-sets:
+  const std::string yaml = stripScene(20, 4) + R"(sets:
   middle: {box: {min: [-0.01, -1, -1], max: [0.01, 1, 1]}}
 constraints:
   - {nodes: [strip/xmin, strip/xmax], fix: all}
@@ -304,13 +310,7 @@ time: {end: 0.05}
 // sheet or the sheet turned as a whole, the edges along the line a sheet is folded about when the fold is
 // steeper than the angle, none when it is not.
 TEST(FabricBending, FoldsProbeCountsCreasesAgainstTheReference) {
-  const std::string yaml = R"(materials:
-  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}
-meshes:
-  strip:
-    generator: {type: rectangle, size: [1, 0.2], divisions: [4, 2]}
-    material: film
-time: {end: 0.01}
+  const std::string yaml = stripScene(4, 2) + R"(time: {end: 0.01}
 probes:
   folds: {type: folds, triangles: strip}
   steep: {type: folds, triangles: strip, angle: 150}

@@ -973,6 +973,9 @@ def write_table(case, out):
          "Kalro-Tezduyar: 758, 4337 (110, 629 lb/in^2)"),
         ("max / mean", f"{c['stress_max_over_mean']:.2f}", "Kalro-Tezduyar: 5.7"),
     ]
+    if c.get("skin_folds") is not None:
+        rows.append(("skin edges turned > 90 deg from the design (folds probe)", f"{c['skin_folds']:.0f}",
+                     "the trailing edge's crumple (docs/RAMAIR.md)"))
     with open(os.path.join(case, "summary.md"), "w") as f:
         f.write(f"# {out['case']}: coupled ram-air wing, {out['settings']['speed']:g} m/s, q = {d['q_Pa']:.4g} Pa, "
                 f"Re {d['Re']:.3g}\n\n| quantity | this run | reference |\n|---|---|---|\n")
@@ -1033,6 +1036,7 @@ def coupled_summary(case, d):
         "skin_stress_mean_Pa": smean, "skin_stress_max_Pa": smax,
         "stress_max_over_mean": smax / smean if smean else None,
         "enclosed_volume_m3": last.get("enclosed_volume"),
+        "skin_folds": last.get("skin_folds"),
         "history": hist,
     }
 

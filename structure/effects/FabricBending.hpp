@@ -6,20 +6,23 @@
 //             Δθ_e = θ_e − θ0_e from the reference shape;
 //   S_T       the triangle's curvature (shape operator, symmetric 2×2 in its own plane), the one uniform
 //             curvature that turns its edges by exactly those angles: S_T = B_T Δθ, with B_T (3×3) fixed at
-//             the reference. B_T is exact for any uniform curvature on any triangulation: each edge's angle is
-//             the jump of the piecewise-linear surface's slope across it, whose dependence on a uniform
-//             curvature (the neighbour's centroid offset and both triangles' interpolation bias) is worked out
-//             on the reference shape, the neighbour unfolded into the triangle's plane. A free edge says the
-//             curvature across it is zero (no moment acts across a free edge);
+//             the reference. B_T is exact for any uniform curvature on any triangulation: each edge's angle
+//             is the jump of the piecewise-linear surface's slope across it, whose dependence on a uniform
+//             curvature (the neighbour's centroid offset and both triangles' interpolation bias) is worked
+//             out on the reference shape, the neighbour unfolded into the triangle's plane. A free edge says
+//             the curvature across it is zero (no moment acts across a free edge);
 //   E         = Σ_T ½ D A_T (κ1² + κ2²) = Σ_T ½ D A_T tr(S_T²), D the flexural rigidity [N·m] (a bending
 //             Poisson ratio of 0, as woven fabrics nearly have).
-// Forces are −∂E/∂x, with the dihedral angle's exact gradient (Bridson, Marino & Fedkiw 2003): they sum to zero
-// and have no moment. A simpler hinge energy Σ_e ½ k_e Δθ_e² is mesh dependent (3x too stiff on a
-// right-triangle grid in the test); this one converges to plate theory (tests/unit/test_fabric_bending.cpp).
+// Forces are −∂E/∂x, with the dihedral angle's exact gradient (Bridson, Marino & Fedkiw 2003): they sum to
+// zero and have no moment. A simpler hinge energy Σ_e ½ k_e Δθ_e² is mesh dependent (3x too stiff on a
+// right-triangle grid, where only one edge in three turns under a cylindrical bend); this one converges to
+// plate theory at second order (tests/unit/test_fabric_bending.cpp).
 //
-// Why a membrane model needs it: a membrane has no bending stiffness, so where the wrinkling law leaves a
-// region stress-free in one direction (a skin compressed along the chord), nothing keeps its mean surface
-// smooth, and the nodes settle into element-scale folds that no fluid mesh can follow (docs/RAMAIR.md).
+// Why a membrane model may need it: a membrane has no bending stiffness, so where the wrinkling law leaves a
+// region stress-free in one direction, nothing keeps its mean surface smooth and the nodes can settle into
+// element-scale folds. Measured on the ram-air canopy (docs/RAMAIR.md, "ramair-brake"): at the fabric's own
+// rigidity it removes the folds that nothing forces, not the crumple of a trailing edge that the ballooning
+// cells draw forward.
 // The explicit step: each hinge bounds it by 2/ω, ω² ≤ max_i k_e |g_i| Σ_j |g_j| / m_i (Gerschgorin on the
 // Gauss–Newton part k_e g gᵀ, g = ∂θ/∂x, k_e the hinge's stiffness through its triangles); for fabric it is
 // orders of magnitude longer than the membrane's.
@@ -53,10 +56,10 @@ class FabricBending final : public Effect {
 
  private:
   struct Triangle {
-    std::array<int, 3> hinge{-1, -1, -1};      ///< hinge of each edge, −1 on a free edge (or a seam)
-    std::array<double, 3> sign{0, 0, 0};       ///< θ of the hinge as this triangle sees it
-    std::array<double, 9> B{};                 ///< S = B Δθ, row-major (s11, s12, s22) × edges
-    double weight = 0;                         ///< D·A_T
+    std::array<int, 3> hinge{-1, -1, -1};  ///< hinge of each edge, −1 on a free edge (or a seam)
+    std::array<double, 3> sign{0, 0, 0};   ///< θ of the hinge as this triangle sees it
+    std::array<double, 9> B{};             ///< S = B Δθ, row-major (s11, s12, s22) × edges
+    double weight = 0;                     ///< D·A_T
   };
   /// Δθ of every hinge at x (and their gradients into g_, if asked).
   void hingeAngles(const double* x, bool gradients) const;

@@ -111,33 +111,34 @@ bool invert3(const std::array<double, 9>& a, std::array<double, 9>& inv) {
 
 }  // namespace
 
+InteriorHinges interiorHinges(const std::vector<int>& conn) {
+  std::map<std::pair<int, int>, std::vector<int>> edges;  // (lower node, higher node) -> third vertices
+  for (std::size_t t = 0; 3 * t + 2 < conn.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = conn[3 * t + std::size_t(k)], b = conn[3 * t + std::size_t((k + 1) % 3)];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(conn[3 * t + std::size_t((k + 2) % 3)]);
+    }
+  InteriorHinges h;
+  for (const auto& [edge, third] : edges) {
+    if (third.size() > 2) ++h.seams;
+    if (third.size() == 2) h.nodes.insert(h.nodes.end(), {third[0], third[1], edge.first, edge.second});
+  }
+  return h;
+}
+
 FabricBending::FabricBending(std::string label, const std::vector<int>& conn, const std::vector<double>& X,
                              const std::vector<double>* mass, double rigidity)
     : label_(std::move(label)), mass_(mass) {
-  // Each edge (lower node, higher node) -> the triangles on it.
-  std::map<std::pair<int, int>, std::vector<int>> edges;
   const std::size_t nt = conn.size() / 3;
   auto P = [&](int node) { return &X[3 * std::size_t(node)]; };
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = conn[3 * t + std::size_t(k)], b = conn[3 * t + std::size_t((k + 1) % 3)];
-      edges[{std::min(a, b), std::max(a, b)}].push_back(int(t));
-    }
-  auto third = [&](int t, int a, int b) {
-    for (int k = 0; k < 3; ++k) {
-      const int v = conn[3 * std::size_t(t) + std::size_t(k)];
-      if (v != a && v != b) return v;
-    }
-    return -1;
-  };
-  std::map<std::pair<int, int>, int> hingeOf;
-  for (const auto& [edge, ts] : edges) {
-    if (ts.size() > 2) ++seams_;
-    if (ts.size() != 2) continue;
-    const int i1 = third(ts[0], edge.first, edge.second), i2 = third(ts[1], edge.first, edge.second);
-    hingeOf[edge] = int(theta0_.size());
-    hingeNodes_.insert(hingeNodes_.end(), {i1, i2, edge.first, edge.second});
-    theta0_.push_back(hingeAngle(P(i1), P(i2), P(edge.first), P(edge.second), nullptr));
+  const InteriorHinges hinges = interiorHinges(conn);
+  hingeNodes_ = hinges.nodes;
+  seams_ = hinges.seams;
+  std::map<std::pair<int, int>, int> hingeOf;  // edge (lower node, higher node) -> its hinge
+  for (std::size_t h = 0; 4 * h < hingeNodes_.size(); ++h) {
+    const int* n = &hingeNodes_[4 * h];
+    hingeOf[{n[2], n[3]}] = int(h);
+    theta0_.push_back(hingeAngle(P(n[0]), P(n[1]), P(n[2]), P(n[3]), nullptr));
   }
   hingeStiffness_.assign(theta0_.size(), 0.0);
 

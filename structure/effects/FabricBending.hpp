@@ -35,6 +35,15 @@
 
 namespace fsi::structure {
 
+/// The interior edges of a triangle set (3 nodes per triangle in conn) that exactly two of its triangles
+/// share: 4 nodes per hinge, the two opposite vertices, then the edge's lower and higher node; and the count
+/// of edges where three or more meet (seams). Used by FabricBending and the `folds` probe.
+struct InteriorHinges {
+  std::vector<int> nodes;
+  int seams = 0;
+};
+InteriorHinges interiorHinges(const std::vector<int>& conn);
+
 class FabricBending final : public Effect {
  public:
   /// conn: model node indices, 3 per triangle; X: reference coordinates (3 per node); mass: the nodes'

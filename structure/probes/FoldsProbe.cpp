@@ -4,10 +4,7 @@
 // the reference, so a sharp edge of the design shape (a trailing edge) is no fold.
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
-#include <map>
-#include <utility>
 
 #include "structure/effects/FabricBending.hpp"
 #include "structure/probes/ProbeKinds.hpp"
@@ -26,18 +23,12 @@ void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
   if (!(spec.angle > 0 && spec.angle < 180))
     p.failAt("angle", fmt::format("is {}; valid: between 0 and 180 degrees (exclusive)", spec.angle));
   p.finish(kKeys);
-  // The hinges, once: the two opposite vertices and the edge, 4 nodes each, into spec.nodes.
+  // The hinges, once, into spec.nodes (4 nodes each).
   const auto& conn = sets.model().membranes.conn;
-  std::map<std::pair<int, int>, std::vector<int>> edges;  // edge -> third vertices
+  std::vector<int> subset;
   for (int t : spec.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const int a = conn[3 * std::size_t(t) + std::size_t(k)],
-                b = conn[3 * std::size_t(t) + std::size_t((k + 1) % 3)];
-      edges[{std::min(a, b), std::max(a, b)}].push_back(conn[3 * std::size_t(t) + std::size_t((k + 2) % 3)]);
-    }
-  spec.nodes.clear();
-  for (const auto& [e, third] : edges)
-    if (third.size() == 2) spec.nodes.insert(spec.nodes.end(), {third[0], third[1], e.first, e.second});
+    for (int k = 0; k < 3; ++k) subset.push_back(conn[3 * std::size_t(t) + std::size_t(k)]);
+  spec.nodes = interiorHinges(subset).nodes;
 }
 
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {

@@ -252,6 +252,14 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
                        << "raise mapTolerance." << exit(FatalIOError);
         }
       }
+      if (o.flag("conserveMoment")) {
+        momentConservation_ = std::make_unique<fsi::coupling::MomentConservation>(
+            fsi::coupling::MomentConservation::onSurface(structure_->interfaceMesh()));
+        Info
+            << "[fsi] moment conserved: the loads get the couple that restores the fluid's moment (its size: "
+               "the log's window lines)"
+            << endl;
+      }
       // Restart: the structure continues from the state written with this time directory.
       const fileName state = stateFile(time_.timePath());
       if (isFile(state)) {
@@ -435,7 +443,8 @@ std::vector<double> fsiCoupling::structureLoads(vector& fluidTotal) const {
   // moved face centres, the transferred nodal forces at the structure's interface nodes where the fluid
   // saw them (reference + the window's displacement). Hᵀ keeps the force exactly; it keeps the moment only
   // as far as H reproduces the positions (exact for coplanar meshes; a curved non-matching interface differs
-  // by the gap between the two surfaces, docs/COUPLING.md "Output of a coupled run").
+  // by the gap between the two surfaces, docs/COUPLING.md "Output of a coupled run"), which conserveMoment
+  // makes up for with a couple.
   vector fm = Zero;
   forAll(interfaces_, i) {
     const vectorField& Cf = mesh_.C().boundaryField()[patchIDs_[i]];
@@ -444,15 +453,29 @@ std::vector<double> fsiCoupling::structureLoads(vector& fluidTotal) const {
   reduce(fm, sumOp<vector>());
   fluidMoment_ = fm;
   structureMoment_ = Zero;
-  if (Pstream::master() && scheme_ && scheme_->displacement().size() == Eigen::Index(loads.size())) {
-    const auto& x0 = structure_->interfaceMesh().points;
-    const Eigen::VectorXd& d = scheme_->displacement();
-    for (std::size_t n = 0; n < x0.size(); ++n) {
-      const vector x(x0[n][0] + d[3 * n], x0[n][1] + d[3 * n + 1], x0[n][2] + d[3 * n + 2]);
-      structureMoment_ += x ^ vector(loads[3 * n], loads[3 * n + 1], loads[3 * n + 2]);
-    }
+  if (Pstream::master() && structure_) {
+    const std::vector<double> x = interfacePositions();
+    if (momentConservation_ && x.size() == loads.size())
+      lastMomentCorrection_ = momentConservation_->apply(x.data(), loads.data(), {fm[0], fm[1], fm[2]});
+    for (std::size_t n = 0; 3 * n < std::min(x.size(), loads.size()); ++n)
+      structureMoment_ += vector(x[3 * n], x[3 * n + 1], x[3 * n + 2]) ^
+                          vector(loads[3 * n], loads[3 * n + 1], loads[3 * n + 2]);
   }
   return loads;
+}
+
+std::vector<double> fsiCoupling::interfacePositions() const {
+  const auto& x0 = structure_->interfaceMesh().points;
+  std::vector<double> x(3 * x0.size());
+  const bool started = scheme_ && scheme_->displacement().size() == Eigen::Index(x.size());
+  const std::vector<double> own = started ? std::vector<double>() : structure_->interfaceDisplacement();
+  for (std::size_t n = 0; n < x0.size(); ++n)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double d = started ? scheme_->displacement()[Eigen::Index(3 * n + k)]
+                               : (own.size() == x.size() ? own[3 * n + k] : 0.0);
+      x[3 * n + k] = x0[n][k] + d;
+    }
+  return x;
 }
 
 void fsiCoupling::sendDisplacement() {
@@ -541,7 +564,15 @@ void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>&
   const auto& w = scheme_->lastWindow();
   Info << "fsiCoupling: t = " << time_.value() << " s, window " << w.window << ": " << w.iterations
        << " iteration(s)" << (w.converged || !implicit_ ? "" : " NOT CONVERGED") << ", interface force fluid "
-       << fluidTotal << " N, structure " << structureTotal << " N" << endl;
+       << fluidTotal << " N, structure " << structureTotal << " N";
+  if (momentConservation_) {
+    const auto& c = lastMomentCorrection_;
+    const double defect =
+        std::sqrt(c.defect[0] * c.defect[0] + c.defect[1] * c.defect[1] + c.defect[2] * c.defect[2]);
+    Info << ", moment made up " << defect / max(mag(fluidMoment_), VSMALL)
+         << " of the fluid's (largest nodal " << c.largestNodalForce << " N)";
+  }
+  Info << endl;
   // The row's time is the fluid's time name: the rows line up with the time directories exactly.
   const std::map<std::string, double> probes = structure_->recordHistory(namedTime(time_.value()));
   char buf[64];

@@ -111,6 +111,9 @@ SETTINGS = {
     "gap_correction": (["no", "yes"], "no", None, None,
                        "coupled yes: the projection's gapCorrection (carry the displacement across the gap "
                        "between the fluid's and the structure's skins; docs/PROJECTION.md)"),
+    "conserve_moment": (["yes", "no"], "yes", None, None,
+                        "coupled yes: the adapter's conserveMoment (the structure's loads carry the fluid's moment "
+                        "too, not only its force; docs/COUPLING.md)"),
     "smoothing_length": ("float", 0.0, 0.0, 1.0,
                          "coupled yes: the fluid's skin moves with the displacement smoothed over this length [m] "
                          "(the adapter's smoothingLength): the flow sees a crumpled trailing edge's mean surface"),
@@ -206,7 +209,7 @@ def read_settings(path):
     else:
         # The structure's keys mean nothing to a rigid wing: say so rather than run without them.
         for key in ("brake_right", "trailing_edge_tape", "equilibrium_start", "keep_side", "gap_correction",
-                    "smoothing_length"):
+                    "smoothing_length", "conserve_moment"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} needs coupled yes (the rigid wing has no structure)")
     return values
@@ -548,6 +551,7 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
     {mode}
     loadRelaxation {s['load_relaxation']:.9g}; keepSide {s['keep_side']};
     gapCorrection {s['gap_correction']}; smoothingLength {s['smoothing_length']:.9g};
+    conserveMoment {s['conserve_moment']};
   }}
 """
     def control_dict(libs, fsi, steps, end, every):
@@ -965,7 +969,7 @@ def write_table(case, out):
         ("interface force fluid vs structure (max over windows)", f"{c['force_fluid_vs_structure_max_relative']:.1e}",
          "conservative transfer: round-off"),
         ("interface moment fluid vs structure (max over windows)",
-         f"{c['moment_fluid_vs_structure_max_relative'] or float('nan'):.1e}", "the two surfaces' gap (docs/RAMAIR.md)"),
+         f"{c['moment_fluid_vs_structure_max_relative'] or float('nan'):.1e}", "round-off with conserve_moment yes (default); the surfaces' gap with no"),
         ("line tension max; left/right sums [N]",
          f"{c['line_tension_max_N']:.2f}; {c['lines_left_sum_N']:.2f} / {c['lines_right_sum_N']:.2f}", "mirror symmetry"),
         ("brake tension left/right [N]", f"{c['brake_tension_left_N']:.2f} / {c['brake_tension_right_N']:.2f}", ""),

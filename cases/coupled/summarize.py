@@ -290,6 +290,10 @@ def report(out):
     d = out["interface_force_relative_difference"]
     lines.append(f"  interface force, fluid vs structure side: largest relative difference {d:.1e} over all "
                  f"windows: {'PASS' if d < FORCE_TOLERANCE else 'outside'} (conservative transfer: < {FORCE_TOLERANCE:g})")
+    m = out.get("interface_moment_relative_difference")
+    if m is not None:
+        lines.append(f"  interface moment, fluid vs structure side: largest relative difference {m:.1e} over all "
+                     f"windows: {'PASS' if m < FORCE_TOLERANCE else 'outside'} (conserveMoment: < {FORCE_TOLERANCE:g})")
     part = f" ({out['wall_seconds_last_part']:.1f} s in this part)" if "wall_seconds_last_part" in out else ""
     lines.append(f"  wall time {out['wall_seconds']:.1f} s{part}")
     return "\n".join(lines)
@@ -312,6 +316,7 @@ def main():
         out["wall_seconds_last_part"] = wall
     rows, t, v = history(case, ref["probe"])
     out["interface_force_relative_difference"] = force_difference(rows)
+    out["interface_moment_relative_difference"] = moment_difference(rows)
     out["iterations"] = iteration_statistics(rows)
     out["end_time"] = t[-1] if t else None
     for name, spec in ref.get("quantities", {}).items():

@@ -14,6 +14,32 @@ std::array<double, 3> InterfaceMesh::faceCentroid(int f) const {
   return c;
 }
 
+double InterfaceMesh::faceArea(int f) const {
+  const std::array<double, 3> c = faceCentroid(f);
+  const int n = faceSize(f);
+  const int* v = face(f);
+  double area = 0;
+  for (int k = 0; k < n; ++k) {
+    const auto& a = points[std::size_t(v[k])];
+    const auto& b = points[std::size_t(v[(k + 1) % n])];
+    const double u[3] = {a[0] - c[0], a[1] - c[1], a[2] - c[2]};
+    const double w[3] = {b[0] - c[0], b[1] - c[1], b[2] - c[2]};
+    const double x = u[1] * w[2] - u[2] * w[1], y = u[2] * w[0] - u[0] * w[2], z = u[0] * w[1] - u[1] * w[0];
+    area += 0.5 * std::sqrt(x * x + y * y + z * z);
+  }
+  return area;
+}
+
+std::vector<double> InterfaceMesh::pointAreas() const {
+  std::vector<double> area(points.size(), 0.0);
+  for (int f = 0; f < numFaces(); ++f) {
+    const double share = faceArea(f) / faceSize(f);
+    const int* v = face(f);
+    for (int k = 0; k < faceSize(f); ++k) area[std::size_t(v[k])] += share;
+  }
+  return area;
+}
+
 double InterfaceMesh::meanEdgeLength() const {
   double sum = 0.0;
   long count = 0;

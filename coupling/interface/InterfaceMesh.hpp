@@ -31,6 +31,10 @@ struct InterfaceMesh {
 
   /// Vertex average of face f: the extra fan vertex of polygon faces (see FanTriangulation).
   std::array<double, 3> faceCentroid(int f) const;
+  /// Area of face f, a planar or slightly warped polygon: the fan of triangles about its vertex average.
+  double faceArea(int f) const;
+  /// Lumped area of each point, Σ over its faces of A_f / n_f (0 for a point on no face).
+  std::vector<double> pointAreas() const;
   /// Mean length of the face edges (a length scale for search tolerances); 0 without faces.
   double meanEdgeLength() const;
 };

@@ -10,28 +10,7 @@
 
 namespace fsi::coupling {
 
-namespace {
-
 using P3 = std::array<double, 3>;
-
-// The area of a planar or slightly warped polygon: the fan of triangles about its vertex average.
-double polygonArea(const InterfaceMesh& m, int f) {
-  const P3 c = m.faceCentroid(f);
-  const int n = m.faceSize(f);
-  const int* v = m.face(f);
-  double area = 0;
-  for (int k = 0; k < n; ++k) {
-    const P3& a = m.points[std::size_t(v[k])];
-    const P3& b = m.points[std::size_t(v[(k + 1) % n])];
-    const double u[3] = {a[0] - c[0], a[1] - c[1], a[2] - c[2]};
-    const double w[3] = {b[0] - c[0], b[1] - c[1], b[2] - c[2]};
-    const double x = u[1] * w[2] - u[2] * w[1], y = u[2] * w[0] - u[0] * w[2], z = u[0] * w[1] - u[1] * w[0];
-    area += 0.5 * std::sqrt(x * x + y * y + z * z);
-  }
-  return area;
-}
-
-}  // namespace
 
 SurfaceSmoothing::SurfaceSmoothing(const InterfaceMesh& mesh, double length) : length_(length) {
   if (!(length > 0) || !std::isfinite(length))
@@ -42,7 +21,7 @@ SurfaceSmoothing::SurfaceSmoothing(const InterfaceMesh& mesh, double length) : l
   area_ = Eigen::VectorXd::Zero(n);
   std::map<std::pair<int, int>, double> weight;  // edge -> w_e
   for (int f = 0; f < mesh.numFaces(); ++f) {
-    const double A = polygonArea(mesh, f);
+    const double A = mesh.faceArea(f);
     const int nf = mesh.faceSize(f);
     if (!(A > 0))
       throw std::invalid_argument(fmt::format("SurfaceSmoothing: face {} of '{}' has no area", f, mesh.name));

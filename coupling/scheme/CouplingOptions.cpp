@@ -468,6 +468,10 @@ OptionSchema couplingOptionSchema() {
       "smoothingLength", "0", Bound{0, true}, std::nullopt,
       "[m] the fluid skin moves with the displacement smoothed over this length, the loads go back through "
       "the transpose (conservative): the flow sees a crumpled membrane's mean surface; 0: off"));
+  coupled.push_back(wordSpec("conserveMoment", OptionType::Switch, "yes", {},
+                             "the transferred loads carry the fluid's moment as well as its force: a couple, "
+                             "spread as the smallest traction, makes up what the surfaces' gap loses "
+                             "(coupling/mapping/MomentConservation.hpp)"));
   OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
                                        "[m] fluid points farther than this from the structure stop the run");
   mapTolerance.defaultNote = "0.25 x mean structure edge length";

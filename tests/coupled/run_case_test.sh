@@ -30,6 +30,11 @@ reached = s["end_time"] is not None and abs(s["end_time"] - end) < 1e-9 * max(1.
 if not reached:
     print(f"the run ended at {s['end_time']}, not {end}")
 ok = reached and s["interface_force_relative_difference"] < 1e-6 and s["all_checks_within_tolerance"]
+# the adapter's conserveMoment (default): the structure's loads carry the fluid's moment too
+moment = s.get("interface_moment_relative_difference")
+if moment is None or not moment < 1e-6:
+    print(f"interface moment fluid vs structure {moment}: not within 1e-6")
+    ok = False
 for k in ("momentum_balance", "mesh_quality"):
     if k in s:
         print(f"{k}: {s[k]}")

@@ -48,6 +48,8 @@ print(f"CL {c['CL']:.4f} (Helmbold {e['CL']:.4f}, ratio {c['CL'] / e['CL']:.3f})
       f"side {c['side_N']:.4f} N, lines left/right {c['lines_left_sum_N']:.3f} / {c['lines_right_sum_N']:.3f} N")
 check(c["windows"] == steps, f"{c['windows']} windows, not {steps}")
 check(c["force_fluid_vs_structure_max_relative"] < 1e-6, "fluid and structure interface forces differ by 1e-6 or more")
+check((c["moment_fluid_vs_structure_max_relative"] or 1.0) < 1e-6,
+      "fluid and structure interface moments differ by 1e-6 or more (conserveMoment)")
 check(abs(c["lines_left_sum_N"] - c["lines_right_sum_N"]) < 0.03 * c["lines_left_sum_N"], "left and right lines differ by 3 % or more")
 check(abs(c["side_N"]) < 0.01 * abs(c["lift_N"]), "side force of 1 % of the lift or more")
 check(spread < 0.05, "lift not settled (5 % over the last fifth)")

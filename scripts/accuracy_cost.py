@@ -129,16 +129,23 @@ def ramair_section():
         return [head, "Not measured yet: `/usr/bin/python3 scripts/ramair_resolutions.py --docs` (half an hour).\n"]
     d = json.loads(path.read_text())
     rows = d["rows"]
+    trimmed = d["finished"] >= "2026-11-28"  # runs to the trim since the main job of 2026-11-28
+    missing = [n for n in ramair_resolutions.VARIANTS if n not in {r["variant"] for r in rows}]
     return [head,
             f"The main job's case (`cases/coupled/ramair-kt`, `coupled.settings`, 2 ranks), the fluid mesh one "
             f"level finer, and the structure 1.5× finer; the wall time is the whole `Allrun.parallel` (meshing, "
             f"rigid start, coupled windows, reconstruction, checkMesh, plots). Measured by `{d['command']}` on "
-            f"{d['machine']}, finished {d['finished']}, commit {d['commit']}. The coupled wing has not trimmed "
-            f"after its windows (docs/RAMAIR.md): the rows compare the same flow time, not converged states."
-            + (" These rows are the main job as it was then (the whole snapped fluid mesh, taut brake lines, 200 "
-               "windows from rest); since 2026-11-28 it runs on the mirrored mesh with slack brake lines, 200 "
-               "windows from rest and 400 carried to its trim, and its finer variants wait for a rerun (the "
-               "fluid-medium one is 1200 windows, about an hour)." if d["finished"] < "2026-11-28" else "")
+            f"{d['machine']}, finished {d['finished']}, commit {d['commit']}."
+            + (" Each run follows the main job's schedule to its trim (200 windows from rest, then 400 with the "
+               "canopy's pseudo-motion carried; the fluid-medium run twice as many windows at half the step), so "
+               "the rows compare trimmed states where the balance column is small." if trimmed else
+               " The coupled wing has not trimmed after its windows (docs/RAMAIR.md): the rows compare the same "
+               "flow time, not converged states. These rows are the main job as it was then (the whole snapped "
+               "fluid mesh, taut brake lines, 200 windows from rest); since 2026-11-28 it runs on the mirrored mesh "
+               "with slack brake lines, 200 windows from rest and 400 carried to its trim, and its finer variants "
+               "wait for a rerun (the fluid-medium one is 1200 windows, about an hour).")
+            + ("".join(f" Not in this measurement: {n} ({ramair_resolutions.VARIANTS[n][0]}); `--only {n}` into "
+                       "the same `--out` adds it." for n in missing))
             + "\n",
             ramair_resolutions.table(rows)] + ramair_reading(rows) + [
             "![ram-air resolutions](img/ramair_resolutions.png)\n"]

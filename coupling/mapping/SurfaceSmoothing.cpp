@@ -18,7 +18,8 @@ SurfaceSmoothing::SurfaceSmoothing(const InterfaceMesh& mesh, double length) : l
   if (mesh.numFaces() == 0)
     throw std::invalid_argument("SurfaceSmoothing: the mesh '" + mesh.name + "' has no faces");
   const int n = mesh.numPoints();
-  area_ = Eigen::VectorXd::Zero(n);
+  const std::vector<double> pointArea = mesh.pointAreas();  // M
+  area_ = Eigen::Map<const Eigen::VectorXd>(pointArea.data(), n);
   std::map<std::pair<int, int>, double> weight;  // edge -> w_e
   for (int f = 0; f < mesh.numFaces(); ++f) {
     const double A = mesh.faceArea(f);
@@ -28,7 +29,6 @@ SurfaceSmoothing::SurfaceSmoothing(const InterfaceMesh& mesh, double length) : l
     const int* v = mesh.face(f);
     for (int k = 0; k < nf; ++k) {
       const int a = v[k], b = v[(k + 1) % nf];
-      area_[a] += A / nf;
       const P3& pa = mesh.points[std::size_t(a)];
       const P3& pb = mesh.points[std::size_t(b)];
       const double l2 = (pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +

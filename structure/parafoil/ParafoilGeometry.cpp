@@ -83,13 +83,16 @@ void validate(const ParafoilParams& q) {
                                             count));
 }
 
-// Chord parameters of the stations of both surfaces: cosine spacing (fine at the leading and trailing edges),
-// with the stations nearest to each attachment row and intake edge moved exactly onto it.
+// Chord parameters of the stations of both surfaces: cosine spacing (fine at the leading and trailing edges)
+// or half-cosine (fine at the leading edge only), with the stations nearest to each attachment row and intake
+// edge moved exactly onto it.
 std::vector<double> chordStations(const ParafoilParams& q, std::vector<int>& rowStation, int& intakeFrom,
                                   int& intakeTo) {
   const int n = q.chordwisePoints;
   std::vector<double> xi(n);
-  for (int i = 0; i < n; ++i) xi[i] = 0.5 * (1.0 - std::cos(kPi * i / (n - 1)));
+  const bool half = q.chordSpacing == ParafoilParams::ChordSpacing::halfCosine;
+  for (int i = 0; i < n; ++i)
+    xi[i] = half ? 1.0 - std::cos(0.5 * kPi * i / (n - 1)) : 0.5 * (1.0 - std::cos(kPi * i / (n - 1)));
   std::vector<char> taken(n, 0);
   taken[0] = taken[n - 1] = 1;
   auto snap = [&](double xOverC, const std::string& what) {

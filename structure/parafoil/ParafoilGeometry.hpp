@@ -53,6 +53,11 @@ struct ParafoilParams {
   // Resolution (independent of any fluid mesh).
   int chordwisePoints = 24;  ///< points per surface, leading and trailing edge included
   int spanDivisions = 2;     ///< span divisions per cell
+  /// Chordwise station spacing. Cosine: fine at both edges. Half-cosine: fine at the leading edge only, the
+  /// trailing edge's panels as long as the mid-chord's; the edge then has no short panels that must crumple
+  /// when the ballooning cells draw it forward (docs/PARAFOIL.md).
+  enum class ChordSpacing { cosine, halfCosine };
+  ChordSpacing chordSpacing = ChordSpacing::cosine;
   /// Designed cell bulge: height of the skins' circular arc between two ribs over the cell width (0 = flat
   /// panels), tapered along the chord with the local section thickness (none at the edges, full at the
   /// thickest point): a canopy cut with its inflated shape, as real ones are.

@@ -21,6 +21,7 @@ const std::vector<std::string>& parafoilKeys() {
                                              "intake",
                                              "chordwise_points",
                                              "span_divisions",
+                                             "chordwise_spacing",
                                              "bulge",
                                              "ribs",
                                              "rows",
@@ -80,6 +81,9 @@ ParafoilParams readParafoilParams(const YamlMap& g, const std::filesystem::path&
   }
   q.chordwisePoints = int(g.integer("chordwise_points", q.chordwisePoints, {4, 10000}));
   q.spanDivisions = int(g.integer("span_divisions", q.spanDivisions, positive));
+  q.chordSpacing = g.choice("chordwise_spacing", {"cosine", "half_cosine"}, "cosine") == "half_cosine"
+                       ? ParafoilParams::ChordSpacing::halfCosine
+                       : ParafoilParams::ChordSpacing::cosine;
   q.bulge = g.number("bulge", q.bulge);
   q.alternateRibs = g.choice("ribs", {"all", "alternate"}, "all") == "alternate";
   if (g.has("rows")) q.rows = g.numbers("rows");

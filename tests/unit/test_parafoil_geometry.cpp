@@ -3,6 +3,7 @@
 // skins, watertightness and orientation of the outer surface, exact line geometry, and mirror symmetry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -192,6 +193,37 @@ TEST(ParafoilGeometry, EnclosedVolumeConvergesToPappus) {
   const double errFine = std::abs(enclosedVolume(fine, fine.triangleGroups.at("skin")) / exact - 1.0);
   EXPECT_LT(errFine, 0.01);
   EXPECT_LT(errFine, errCoarse / 3.0);  // second order: halving both spacings quarters the error
+}
+
+// The root rib's section (y = 0) sorted by x: the trailing-edge panel is the gap between the two largest x.
+double trailingEdgePanel(const MeshData& m) {
+  std::vector<double> xs;
+  for (const auto& p : m.points)
+    if (std::abs(p[1]) < 1e-12 && p[2] > -0.5) xs.push_back(p[0]);  // not the lines below the wing
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }),
+           xs.end());
+  return xs.back() - xs[xs.size() - 2];
+}
+
+TEST(ParafoilGeometry, HalfCosineSpacingGivesTheTrailingEdgeLongPanels) {
+  // n = 20 stations. Cosine: the last chord gap is (1 + cos(π·18/19))/2 = 0.0068; half-cosine:
+  // cos(π/2·18/19) = 0.0826 (x on the surface differs from the chord parameter by the slope's offset, a few
+  // per cent of the gap near the trailing edge).
+  ParafoilParams q = untwisted(20, 2);
+  const double cosine = trailingEdgePanel(buildParafoil(q));
+  q.chordSpacing = ParafoilParams::ChordSpacing::halfCosine;
+  const MeshData half = buildParafoil(q);
+  EXPECT_NEAR(cosine, 0.5 * (1 + std::cos(kPi * 18 / 19)), 0.1 * 0.0068);
+  EXPECT_NEAR(trailingEdgePanel(half), std::cos(0.5 * kPi * 18 / 19), 0.05 * 0.0826);
+  // Still a closed, outward skin enclosing the section's volume (Pappus) within the coarse mesh's error,
+  // with the attachment rows on their stations.
+  const auto [area, ybar] = areaCentroid(q.section);
+  const double exact = area * q.span * (1.0 + ybar / q.arcRadius);
+  EXPECT_NEAR(enclosedVolume(half, half.triangleGroups.at("skin")) / exact, 1.0, 0.02);
+  std::multiset<double> xs;
+  for (int a : half.nodeGroups.at("attachments")) xs.insert(std::round(half.points[a][0] * 1e9) / 1e9);
+  for (double row : q.rows) EXPECT_EQ(xs.count(std::round(row * 1e9) / 1e9), std::size_t(q.cells + 1));
 }
 
 TEST(ParafoilGeometry, LinesAndAttachmentsAsSpecified) {
@@ -479,6 +511,9 @@ TEST(ParafoilScene, MisspelledKeyAndBadValueAreLocated) {
   const std::string typo = withChange("cells: 4", "cels: 4");
   EXPECT_NE(typo.find("wing.yaml:6"), std::string::npos) << typo;
   EXPECT_NE(typo.find("cells"), std::string::npos) << typo;
+  const std::string spacing = withChange("span_divisions: 1", "span_divisions: 1, chordwise_spacing: even");
+  EXPECT_NE(spacing.find("wing.yaml:6"), std::string::npos) << spacing;
+  EXPECT_NE(spacing.find("half_cosine"), std::string::npos) << spacing;  // the valid choices are named
   const std::string section = withChange("NACA 2412", "NACA 2x12");
   EXPECT_NE(section.find("wing.yaml:6"), std::string::npos) << section;
   const std::string rows = withChange("riser_length: 0.4", "rows: [0.5, 0.2]");

@@ -16,3 +16,10 @@ add_test(NAME validation.parafoil-convergence
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/parafoil_convergence.py $<TARGET_FILE:fsi>
                  ${PROJECT_BINARY_DIR}/validation/parafoil-convergence)
 set_tests_properties(validation.parafoil-convergence PROPERTIES TIMEOUT 1800 LABELS validation)
+
+# The parafoil's trailing edge after inflation: cosine chordwise spacing crumples it, half-cosine does not, and
+# both carry the same load (tests/validation/parafoil_trailing_edge.py).
+add_test(NAME validation.parafoil-trailing-edge
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/parafoil_trailing_edge.py $<TARGET_FILE:fsi>
+                 ${PROJECT_BINARY_DIR}/validation/parafoil-trailing-edge)
+set_tests_properties(validation.parafoil-trailing-edge PROPERTIES TIMEOUT 600 LABELS validation)

@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -24,12 +25,15 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "coupling/effects/CouplingEffects.hpp"
 #include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
+#include "coupling/mapping/StateTransfer.hpp"
 #include "structure/io/MeshFileWriters.hpp"
+#include "structure/io/ResultsWriter.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/Interrupt.hpp"
 #include "structure/run/Simulation.hpp"
@@ -65,11 +69,51 @@ void requireEndTime(const Scene& scene) {
                     scene.file.string()));
 }
 
+// --start-from: the model starts at another run's last frame, interpolated onto this mesh (nested iteration:
+// a coarse run's static state as a fine run's start). Held degrees of freedom stay at their reference.
+nlohmann::json startFromRun(Scene& scene, fs::path source, bool quiet) {
+  if (scene.solver.type != fsi::structure::SolverControl::Type::DynamicRelaxation)
+    throw fsi::InputError(
+        fmt::format("--start-from {}: only for a dynamic_relaxation scene (solver.type); "
+                    "{} runs explicit dynamics, which starts at rest in its reference state",
+                    source.string(), scene.file.string()));
+  if (fs::is_directory(source)) source /= "results.h5";
+  fsi::structure::ResultsFrame frame;
+  try {
+    frame = fsi::structure::readLastFrame(source);
+  } catch (const fsi::InputError& e) {
+    throw fsi::InputError(fmt::format("--start-from: {}", e.what()));
+  }
+  fsi::coupling::StateTransferReport rep;
+  const std::vector<double> u =
+      fsi::coupling::transferDisplacement(frame, *scene.model, "--start-from " + source.string(), -1.0, &rep);
+  auto& N = scene.model->nodes;
+  for (std::size_t d = 0; d < u.size(); ++d) N.x[d] = N.X[d] + u[d];
+  for (const int d : scene.constraints.fixedDofs) N.x[std::size_t(d)] = N.X[std::size_t(d)];
+  std::fill(N.v.begin(), N.v.end(), 0.0);
+  if (!quiet)
+    fmt::print(
+        "start  {} frame {} (t = {:g}), {} nodes: {} on its triangles, {} on its cables, {} at its "
+        "nearest node; largest distance {:.3g} m\n",
+        source.string(), frame.step, frame.time, frame.numNodes(), rep.membraneNodes, rep.cableNodes,
+        rep.pointNodes, rep.largestDistance);
+  return {{"file", source.string()},
+          {"frame", frame.step},
+          {"time", frame.time},
+          {"source_nodes", frame.numNodes()},
+          {"membrane_nodes", rep.membraneNodes},
+          {"cable_nodes", rep.cableNodes},
+          {"point_nodes", rep.pointNodes},
+          {"largest_distance", rep.largestDistance}};
+}
+
 int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets,
-               bool quiet) {
+               const fs::path& startFrom, bool quiet) {
   installInterruptHandler(gStop);  // (already installed before main; repeated in case a library replaced it)
   Scene scene = loadScene(scenePath, sets);
   requireEndTime(scene);
+  nlohmann::json start;
+  if (!startFrom.empty()) start = startFromRun(scene, startFrom, quiet);
   // An output directory that cannot be made is bad input too: say so before the run, not as a crash in it.
   std::error_code ec;
   fs::create_directories(out, ec);
@@ -80,6 +124,7 @@ int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector
   opt.outDir = out;
   opt.quiet = quiet;
   opt.stop = &gStop;
+  opt.startFrom = start;
   const RunResult r = runSimulation(scene, opt);
   if (!quiet)
     fmt::print("results {}/results.xdmf (open in ParaView), summary {}/summary.json\n", out.string(),
@@ -306,6 +351,11 @@ int main(int argc, char** argv) {
   run->add_option("--out,-o", outDir, "output directory")->required();
   run->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
   run->add_flag("--quiet,-q", quiet, "no progress output");
+  fs::path startFrom;
+  run->add_option(
+      "--start-from", startFrom,
+      "start a dynamic relaxation at another run's last frame (RUN or RUN/results.h5), interpolated "
+      "onto this mesh (e.g. a coarser run of the same geometry)");
 
   auto* validate = app.add_subcommand("validate", "run a case's reference checks (CASE/reference.yaml)");
   fs::path caseDir, valOut;
@@ -391,7 +441,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (*run) return runCommand(scenePath, outDir, sets, quiet);
+    if (*run) return runCommand(scenePath, outDir, sets, startFrom, quiet);
     if (*validate) return validateCommand(caseDir, valOut, quiet);
     if (*mapCheck) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))

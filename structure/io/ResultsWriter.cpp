@@ -15,6 +15,7 @@
 
 #include "structure/io/AtomicFile.hpp"
 #include "structure/io/Hdf5File.hpp"
+#include "structure/model/Error.hpp"
 
 namespace fsi::structure {
 namespace {
@@ -697,6 +698,56 @@ const fs::path& ResultsWriter::h5Path() const {
 }
 const fs::path& ResultsWriter::xdmfPath() const {
   return impl_->xdmfPath;
+}
+
+ResultsFrame readLastFrame(const fs::path& h5File) {
+  std::error_code ec;
+  if (!fs::is_regular_file(h5File, ec))
+    throw InputError(fmt::format("{}: no such results file", h5File.string()));
+  const hdf5::QuietErrors quiet;
+  if (H5Fis_hdf5(h5File.c_str()) <= 0)
+    throw InputError(fmt::format("{}: not an HDF5 results file{}", h5File.string(), hdf5::errorDetail()));
+  const Context c{{h5File, "reading results", true}};
+  const Hid file = c.check(H5Fopen(h5File.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "cannot open", "");
+  ResultsFrame r;
+  std::vector<hsize_t> dims;
+  auto connectivity = [&](const char* name, std::size_t width, auto& out) {
+    const std::string full = std::string("/") + name;
+    const std::vector<int> v = readDataset<int>(c, file.get(), name, full, H5T_NATIVE_INT, dims);
+    if (!v.empty() && (dims.size() != 2 || dims[1] != width))
+      c.fail(fmt::format("expected {} columns in", width), full);
+    out.resize(v.size() / width);
+    std::copy(v.begin(), v.end(), out.empty() ? nullptr : out.front().data());
+  };
+  connectivity("mesh/triangles", 3, r.triangles);
+  connectivity("mesh/lines", 2, r.lines);
+  const Hid steps =
+      c.check(H5Gopen2(file.get(), "steps", H5P_DEFAULT), H5Gclose, "cannot open group", "/steps");
+  const std::vector<std::string> names = linkNames(c, steps.get(), "/steps");
+  if (names.empty()) c.fail("no frame in", "/steps");
+  r.step = names.back();  // zero-padded indices: name order is write order
+  const std::string group = "/steps/" + r.step;
+  const Hid g =
+      c.check(H5Gopen2(steps.get(), r.step.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group", group);
+  r.time = readScalarAttribute<double>(c, g.get(), "time", H5T_NATIVE_DOUBLE, group);
+  for (auto [name, out] :
+       {std::pair{"coordinates", &r.coordinates}, std::pair{"displacement", &r.displacement}}) {
+    const std::string full = group + "/" + name;
+    *out = readDataset<double>(c, g.get(), name, full, H5T_NATIVE_DOUBLE, dims);
+    if (dims.size() != 2 || dims[1] != 3) c.fail("expected 3 columns in", full);
+    for (const double x : *out)
+      if (!std::isfinite(x)) c.fail("non-finite value in", full);
+  }
+  if (r.coordinates.size() != r.displacement.size()) c.fail("not one displacement per node in", group);
+  const int n = r.numNodes();
+  for (const auto& t : r.triangles)
+    for (const int i : t)
+      if (i < 0 || i >= n)
+        c.fail(fmt::format("node {} out of range (nodes: {}) in", i, n), "/mesh/triangles");
+  for (const auto& l : r.lines)
+    for (const int i : l)
+      if (i < 0 || i >= n) c.fail(fmt::format("node {} out of range (nodes: {}) in", i, n), "/mesh/lines");
+  return r;
 }
 
 }  // namespace fsi::structure

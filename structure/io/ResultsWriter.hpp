@@ -94,4 +94,20 @@ class ResultsWriter {
   std::unique_ptr<Impl> impl_;
 };
 
+/// One frame of a results file as a later run reads it back (fsi run --start-from): the mesh, and the frame's
+/// current coordinates and displacement (reference = coordinates - displacement).
+struct ResultsFrame {
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<std::array<int, 2>> lines;
+  std::vector<double> coordinates;   ///< 3 per node
+  std::vector<double> displacement;  ///< 3 per node
+  std::string step;                  ///< the frame's group name under /steps
+  double time = 0;
+  int numNodes() const { return int(coordinates.size() / 3); }
+};
+
+/// The last frame of h5File (written by ResultsWriter). Throws fsi::InputError naming the file and the object
+/// for a file that is not such a series, holds no frame, or holds a non-finite or out-of-range value.
+ResultsFrame readLastFrame(const std::filesystem::path& h5File);
+
 }  // namespace fsi::structure

@@ -90,6 +90,7 @@ void finishRun(const Scene& scene, RunResult& result, const RunOptions& opt, nlo
   s["probes"] = nlohmann::json::object();
   for (const auto& [k, v] : result.probes) s["probes"][k] = v;
   s["stats"] = std::move(stats);
+  if (!opt.startFrom.is_null()) s["start_from"] = opt.startFrom;
   if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
   if (!result.stateFile.empty()) s["state_file"] = result.stateFile.filename().string();
   result.summary = s;

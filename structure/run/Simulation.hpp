@@ -23,6 +23,9 @@ struct RunOptions {
   /// A request on it stops the run cleanly (honoured during set-up, at every step and every DR iteration);
   /// none: the run cannot be stopped from outside.
   const StopToken* stop = nullptr;
+  /// Where the start state came from (`fsi run --start-from`), copied into summary.json as "start_from";
+  /// null: the reference state.
+  nlohmann::json startFrom;
 };
 
 struct RunResult {

@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""fsi run --start-from: a dynamic relaxation started at another run's last frame.
+
+- Restarted from its own static state, the parafoil inflation is static at once (0 iterations) with the same
+  probes: the state is read back and placed exactly.
+- Continuation: the ram pressure raised from 61 to 70 Pa, started from the 61 Pa state, reaches the static
+  state the run from the design shape reaches (probes within the relaxation's tolerance) in fewer iterations.
+- Nested iteration (a coarse run's state on a finer mesh) is not tested for speed: it is slower (docs/PERFORMANCE.md).
+  A 1.5x finer canopy started from the coarse state reaches the same static state as from its design shape.
+- Bad uses exit with 2 and say why: an explicit-dynamics scene, a missing file, a run of another geometry.
+
+usage: start_from.py FSI OUTDIR
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+CASE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases", "structure",
+                    "parafoil-kt-inflation")
+RELAX = os.path.join(CASE, "relaxation.yaml")
+failures = []
+
+
+def check(cond, what):
+    print(("ok    " if cond else "FAIL  ") + what)
+    if not cond:
+        failures.append(what)
+
+
+def run(fsi, out, *args):
+    cmd = [fsi, "run", RELAX, "--out", out, "--quiet", *args]
+    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    print("$ " + " ".join(cmd) + f"  -> exit {p.returncode}")
+    s = os.path.join(out, "summary.json")
+    return p, (json.load(open(s)) if p.returncode == 0 and os.path.exists(s) else None)
+
+
+def close(a, b, rel):
+    return abs(a - b) <= rel * max(abs(a), abs(b), 1e-30)
+
+
+def main():
+    fsi, work = sys.argv[1], sys.argv[2]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    d = lambda n: os.path.join(work, n)  # noqa: E731
+
+    _, base = run(fsi, d("base"))
+    check(base is not None and base["stop_reason"] == "static", "the 61 Pa inflation is static")
+    if base is None:
+        return finish()
+    _, again = run(fsi, d("again"), "--start-from", d("base"))
+    check(again is not None and again["stats"]["iterations"] == 0,
+          f"restarted from its own static state: {again and again['stats']['iterations']} iterations (0)")
+    if again:
+        check(again["start_from"]["largest_distance"] < 1e-12, "the same mesh: every node on its own source node")
+        # The equilibrium error is itself a difference of the order of round-off times the load: absolute.
+        check(all(close(again["probes"][k], base["probes"][k], 1e-12) if k != "equilibrium" else
+                  abs(again["probes"][k] - base["probes"][k]) < 1e-12 for k in base["probes"]),
+              "the same probes to 1e-12")
+
+    q = "effects.pressure.value=70"
+    _, scratch = run(fsi, d("q70"), "--set", q)
+    _, cont = run(fsi, d("q70-from-61"), "--set", q, "--start-from", os.path.join(d("base"), "results.h5"))
+    if scratch and cont:
+        for k in ("enclosed_volume", "line_tension_max", "anchor_force_x", "skin_stress_max"):
+            check(close(cont["probes"][k], scratch["probes"][k], 1e-5),
+                  f"70 Pa from the 61 Pa state: {k} {cont['probes'][k]:.7g} vs {scratch['probes'][k]:.7g} from the "
+                  "design shape (1e-5)")
+        check(cont["probes"]["equilibrium"] < 1e-6, "global equilibrium < 1e-6")
+        check(cont["stats"]["iterations"] < scratch["stats"]["iterations"],
+              f"fewer iterations: {cont['stats']['iterations']} against {scratch['stats']['iterations']}")
+    else:
+        check(False, "both 70 Pa runs finish")
+
+    fine = ["--set", "meshes.wing.generator.chordwise_points=30", "--set", "meshes.wing.generator.span_divisions=3"]
+    _, fscratch = run(fsi, d("fine"), *fine)
+    _, fnested = run(fsi, d("fine-from-coarse"), *fine, "--start-from", d("base"))
+    if fscratch and fnested:
+        check(fnested["start_from"]["membrane_nodes"] > 0 and fnested["start_from"]["cable_nodes"] > 0,
+              "nested: skin and line nodes mapped")
+        for k in ("enclosed_volume", "line_tension_max", "anchor_force_x"):
+            check(close(fnested["probes"][k], fscratch["probes"][k], 1e-4),
+                  f"finer canopy from the coarse state: {k} {fnested['probes'][k]:.7g} vs {fscratch['probes'][k]:.7g} "
+                  "from the design shape (1e-4)")
+    else:
+        check(False, "both finer runs finish")
+
+    for args, text in (
+            (["--start-from", d("base")], "only for a dynamic_relaxation scene"),
+            (["--start-from", d("nothing")], "no such results file"),
+            (["--start-from", d("base"), "--set", "meshes.wing.generator.root_chord=2.0"],
+             "not of this model's geometry")):
+        scene = os.path.join(CASE, "scene.yaml") if "dynamic_relaxation" in text else RELAX
+        cmd = [fsi, "run", scene, "--out", d("bad"), "--quiet", *args]
+        p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        check(p.returncode == 2 and text in p.stdout and "--start-from" in p.stdout,
+              f"{' '.join(args)}: exit {p.returncode} (2), says '{text}': {p.stdout.strip()[:200]}")
+    return finish()
+
+
+def finish():
+    print("FAILED: " + "; ".join(failures) if failures else "all checks passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

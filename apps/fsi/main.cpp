@@ -69,8 +69,9 @@ void requireEndTime(const Scene& scene) {
                     scene.file.string()));
 }
 
-// --start-from: the model starts at another run's last frame, interpolated onto this mesh (nested iteration:
-// a coarse run's static state as a fine run's start). Held degrees of freedom stay at their reference.
+// --start-from: the model starts at another run's last frame, interpolated onto this mesh (a continuation in
+// a load, a resumed relaxation, or a run of the same geometry on another mesh). Held degrees of freedom stay
+// at their reference.
 nlohmann::json startFromRun(Scene& scene, fs::path source, bool quiet) {
   if (scene.solver.type != fsi::structure::SolverControl::Type::DynamicRelaxation)
     throw fsi::InputError(
@@ -93,9 +94,9 @@ nlohmann::json startFromRun(Scene& scene, fs::path source, bool quiet) {
   std::fill(N.v.begin(), N.v.end(), 0.0);
   if (!quiet)
     fmt::print(
-        "start  {} frame {} (t = {:g}), {} nodes: {} on its triangles, {} on its cables, {} at its "
-        "nearest node; largest distance {:.3g} m\n",
-        source.string(), frame.step, frame.time, frame.numNodes(), rep.membraneNodes, rep.cableNodes,
+        "start  {} frame {} (t = {:g}, {} nodes); this model's {} nodes: {} on its triangles, {} on its "
+        "cables, {} at its nearest node; largest distance {:.3g} m\n",
+        source.string(), frame.step, frame.time, frame.numNodes(), N.count, rep.membraneNodes, rep.cableNodes,
         rep.pointNodes, rep.largestDistance);
   return {{"file", source.string()},
           {"frame", frame.step},

@@ -1,8 +1,8 @@
 #pragma once
 // StateTransfer: a model's start state interpolated from another run's result on a mesh of the same geometry
-// at another resolution (`fsi run --start-from`). Nested iteration: the slow global modes of a line-anchored
-// canopy (its swing and pitch on the lines) converge on a coarse mesh at a fraction of the cost, and the fine
-// run starts with them settled (docs/PERFORMANCE.md).
+// or the same resolution (`fsi run --start-from`): a relaxation continued in a load or resumed. (As a coarse
+// start for a fine relaxation it does not pay: the interpolated state rings at element scale,
+// docs/PERFORMANCE.md.)
 //
 // Each target node takes the source displacement at its closest point in the source's reference geometry:
 //   - a node of a membrane triangle: on the source's triangles, preferring the closest triangle that faces

@@ -3,13 +3,16 @@
 #include <cstdio>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <string>
 
+#include "OFstream.H"
 #include "addToRunTimeSelectionTable.H"
 #include "coupling/CouplingCsv.hpp"
 #include "coupling/CouplingTiming.hpp"
 #include "coupling/StructureParticipant.hpp"
 #include "coupling/effects/CouplingEffects.hpp"
+#include "coupling/interface/InterfaceIO.hpp"
 #include "coupling/mapping/L2Projection.hpp"
 #include "coupling/mapping/SurfaceSmoothing.hpp"
 #include "coupling/scheme/CouplingOptions.hpp"
@@ -176,6 +179,14 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   const auto& pd = mesh_.lookupObject<pointVectorField>("pointDisplacement");
   for (const label id : patchIDs_) interfaces_.emplace_back(new fsiInterfacePatch(mesh_, id, pd));
   if (o.flag("meshGuard")) meshGuard_.reset(new fsiMeshGuard(mesh_, patchIDs_, pd, o.real("minVolumeRatio")));
+  if (o.real("remeshBelow") > 0 && (!meshGuard_ || o.real("remeshBelow") <= o.real("minVolumeRatio")))
+    FatalIOErrorInFunction(dict) << "fsiCoupling: remeshBelow " << o.real("remeshBelow")
+                                 << " needs meshGuard yes and a value above minVolumeRatio "
+                                 << o.real("minVolumeRatio") << " (the guard's stop)" << exit(FatalIOError);
+  if (meshGuard_) meshGuard_->setRemeshBelow(o.real("remeshBelow"));
+  if (o.given("remeshSurface") && patchIDs_.size() != 1)
+    FatalIOErrorInFunction(dict) << "fsiCoupling: remeshSurface is the skin of one interface patch; this run "
+                                 << "couples " << patchIDs_.size() << " patches" << exit(FatalIOError);
   // restoreMeshPoints is an option of the implicit scheme only (the staggered one never repeats a step).
   checkpoint_.reset(
       new fsiFluidCheckpoint(mesh_, verifyCheckpoint_ || !implicit_ || o.flag("restoreMeshPoints")));
@@ -184,6 +195,12 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   progressEvery_ =
       o.given("progress") ? label(o.integer("progress")) : max(label(1), (windowsTotal + 39) / 40);
 
+  // A mesh made around the deformed canopy starts undeformed: its interface displacement is zero.
+  scalar startDisplacement = 0;
+  for (const label id : patchIDs_)
+    startDisplacement = max(startDisplacement, max(mag(pd.boundaryField()[id].patchInternalField())));
+  reduce(startDisplacement, maxOp<scalar>());
+  const bool undeformedStart = startDisplacement == 0;
   const fileName outDir = time_.globalPath() / "structure";
   const bool fresh = time_.value() <= 0.5 * dt;
   const scalar t0 = namedTime(time_.value());
@@ -209,7 +226,51 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
                                      fsi::coupling::equilibriumOptions(o));
       // The fluid's load arrives as nodal forces (structureLoads: the conservative transfer Hᵀ f).
       structure_->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
-      // Projection structure -> each fluid patch, on the reference geometry.
+      // Restart: the structure continues from the state written with this time directory.
+      const fileName state = stateFile(time_.timePath());
+      if (isFile(state)) {
+        restartArrays = structure_->readState(std::string(state));
+        // The time directory's name is rounded to timePrecision digits; the state file keeps the exact time.
+        if (std::abs(structure_->time() - time_.value()) > 1e-3 * dt)
+          FatalErrorInFunction << "fsiCoupling: structure state " << state
+                               << " is at t = " << structure_->time() << " s, the fluid at " << time_.value()
+                               << " s" << exit(FatalError);
+        structure_->alignTime(time_.value());
+        Info << "[fsi] structure restarted from " << time_.timeName() << "/uniform/" << state.name() << endl;
+        // interfaceReference restart: a mesh that starts undeformed was made around the canopy of this state;
+        // a deformed one (a plain restart of the same mesh) keeps the reference its state file carries.
+        const auto ref = restartArrays.find("interface_reference");
+        const bool newMesh = o.text("interfaceReference") == "restart" && undeformedStart;
+        const auto remeshRef = restartArrays.find("remesh_reference");
+        if (newMesh && remeshRef != restartArrays.end()) {
+          interfaceReference_ = remeshRef->second;  // the skin the new mesh was snapped to
+        } else if (newMesh) {
+          interfaceReference_ = structure_->interfaceDisplacement();
+        } else if (ref != restartArrays.end()) {
+          interfaceReference_ = ref->second;
+        }
+        if (!interfaceReference_.empty()) {
+          if (interfaceReference_.size() != 3 * std::size_t(structure_->numInterfaceNodes()))
+            FatalErrorInFunction << "fsiCoupling: structure state " << state << ": interface_reference has "
+                                 << label(interfaceReference_.size()) << " values for "
+                                 << structure_->numInterfaceNodes() << " interface nodes" << exit(FatalError);
+          Info << "[fsi] the fluid mesh is undeformed at the canopy's state of t = "
+               << (newMesh ? time_.timeName() : word("an earlier restart"))
+               << " (interfaceReference restart): the projection is set up on that shape" << endl;
+        }
+      } else if (o.text("interfaceReference") == "restart") {
+        FatalIOErrorInFunction(dict) << "fsiCoupling: interfaceReference restart needs a restart state, "
+                                     << state << ", and there is none (a run from t = 0 uses design)"
+                                     << exit(FatalIOError);
+      } else if (!fresh) {
+        FatalErrorInFunction
+            << "fsiCoupling: the run starts at t = " << time_.value() << " s but there is no structure state "
+            << state << " (a restart needs the state written with that time directory; a new run starts "
+            << "at t = 0)" << exit(FatalError);
+      }
+
+      // Projection structure -> each fluid patch, on the reference geometry: the structure's design shape, or
+      // the shape at which the fluid mesh was made (interfaceReference).
       fsi::coupling::ProjectionOptions opt;
       opt.mass = projectionKind(o.text("projection"));
       opt.gapCorrection = o.flag("gapCorrection");
@@ -222,11 +283,14 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       }
       opt.quadratureLevel =
           o.isWord("quadratureLevel") ? fsi::coupling::kAutoQuadrature : int(o.integer("quadratureLevel"));
+      fsi::coupling::InterfaceMesh structureReference = structure_->interfaceMesh();
+      for (std::size_t n = 0; n < structureReference.points.size() && !interfaceReference_.empty(); ++n)
+        for (std::size_t k = 0; k < 3; ++k) structureReference.points[n][k] += interfaceReference_[3 * n + k];
       opt.tolerance = o.given("mapTolerance") ? o.real("mapTolerance")
                                               : 0.25 * structure_->interfaceMesh().meanEdgeLength();
+      projectionOptions_ = opt;
       for (const auto& ip : interfaces_) {
-        maps_.emplace_back(
-            new fsi::coupling::L2Projection(structure_->interfaceMesh(), ip->referenceMesh(), opt));
+        maps_.emplace_back(new fsi::coupling::L2Projection(structureReference, ip->referenceMesh(), opt));
         const auto& r = maps_.back()->report();
         Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
              << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass())
@@ -260,22 +324,6 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
                "the log's window lines)"
             << endl;
       }
-      // Restart: the structure continues from the state written with this time directory.
-      const fileName state = stateFile(time_.timePath());
-      if (isFile(state)) {
-        restartArrays = structure_->readState(std::string(state));
-        if (std::abs(structure_->time() - time_.value()) > 1e-9 * max(dt, 1.0))
-          FatalErrorInFunction << "fsiCoupling: structure state " << state
-                               << " is at t = " << structure_->time() << " s, the fluid at " << time_.value()
-                               << " s" << exit(FatalError);
-        Info << "[fsi] structure restarted from " << time_.timeName() << "/uniform/" << state.name() << endl;
-      } else if (!fresh) {
-        FatalErrorInFunction
-            << "fsiCoupling: the run starts at t = " << time_.value() << " s but there is no structure state "
-            << state << " (a restart needs the state written with that time directory; a new run starts "
-            << "at t = 0)" << exit(FatalError);
-      }
-
       scheme_ = std::make_unique<fsi::coupling::CouplingScheme>(
           fsi::coupling::couplingConfig(o, dt, endTime_), *structure_,
           implicit_ ? fsi::coupling::makeAcceleration(o) : nullptr);
@@ -478,23 +526,86 @@ std::vector<double> fsiCoupling::interfacePositions() const {
   return x;
 }
 
+void fsiCoupling::patchDisplacement(std::size_t i, const double* ds, std::vector<double>& df) {
+  df.assign(3 * std::size_t(interfaces_[i]->nGlobalPoints()), 0.0);
+  if (interfaceReference_.empty()) {
+    maps_[i]->apply(ds, df.data(), 3);
+  } else {
+    relative_.resize(interfaceReference_.size());
+    for (std::size_t k = 0; k < relative_.size(); ++k) relative_[k] = ds[k] - interfaceReference_[k];
+    maps_[i]->apply(relative_.data(), df.data(), 3);
+  }
+  if (!smoothing_.empty()) smoothing_[i]->apply(df.data(), df.data(), 3);
+}
+
 void fsiCoupling::sendDisplacement() {
   auto& pd = mesh_.lookupObjectRef<pointVectorField>("pointDisplacement");
   std::vector<double> df;
-  forAll(interfaces_, i) {
+  if (Pstream::master()) {
+    const Eigen::VectorXd& ds = scheme_->displacement();
+    lastSent_.assign(ds.data(), ds.data() + ds.size());
+  }
+  for (std::size_t i = 0; i < interfaces_.size(); ++i) {
     const auto h0 = Clock::now();
-    if (Pstream::master()) {
-      const Eigen::VectorXd& ds = scheme_->displacement();
-      df.assign(3 * std::size_t(interfaces_[i]->nGlobalPoints()), 0.0);
-      maps_[i]->apply(ds.data(), df.data(), 3);
-      if (!smoothing_.empty()) smoothing_[i]->apply(df.data(), df.data(), 3);
-    }
+    if (Pstream::master()) patchDisplacement(i, lastSent_.data(), df);
     const auto s0 = Clock::now();
     tDisplacementProjection_ += seconds(h0, s0);
     const vectorField local = interfaces_[i]->scatterPointValues(df);
     tScatter_ += seconds(s0, Clock::now());
     refCast<fsiInterfaceDisplacementPointPatchVectorField>(pd.boundaryFieldRef()[patchIDs_[i]])
         .setDisplacement(local);
+  }
+}
+
+void fsiCoupling::requestRemesh() {
+  // The window is written like a run's last one: fields and structure state together, so the new mesh's
+  // run restarts from them.
+  const_cast<Time&>(time_).writeAndEnd();
+  writeStructure();
+  if (Pstream::master()) {
+    const fsiFloatingPointTrapsOff noTraps;
+    const fileName dir = time_.globalPath() / "structure" / "remesh";
+    mkDir(dir);
+    std::vector<double> df;
+    try {
+      // The skin as the fluid has it now: the displacement sent for this window (the staggered scheme's
+      // prediction, not the structure's state after it: the new mesh must continue the flow's wall without
+      // a jump). The new mesh is snapped to it, and the state file carries the displacement as the new
+      // mesh's reference (remesh_reference).
+      const std::string surface =
+          options_->given("remeshSurface") ? options_->text("remeshSurface") : std::string();
+      if (!surface.empty()) {
+        // The undeformed skin moved with the canopy (the structure's design shape -> the skin's vertices):
+        // every new mesh snaps to the same fine surface, not to the last mesh's faceted one.
+        fileName file = fileName(surface).expand();
+        if (!file.isAbsolute()) file = time_.globalPath() / file;
+        const fsi::coupling::InterfaceMesh skin = fsi::coupling::readStlSurface(std::string(file));
+        const fsi::coupling::L2Projection map(structure_->interfaceMesh(), skin, projectionOptions_);
+        if (!map.report().allMapped())
+          throw std::runtime_error("remeshSurface " + std::string(file) + ": " +
+                                   std::to_string(map.report().unmappedTargetNodes) +
+                                   " vertices are farther than mapTolerance from the structure's interface");
+        df.assign(3 * skin.points.size(), 0.0);
+        map.apply(lastSent_.data(), df.data(), 3);
+        fsi::coupling::writeInterfaceStl(skin, df, std::string(dir / (interfaces_[0]->name() + ".stl")));
+      } else {
+        for (std::size_t i = 0; i < interfaces_.size(); ++i) {
+          patchDisplacement(i, lastSent_.data(), df);
+          fsi::coupling::writeInterfaceStl(interfaces_[i]->referenceMesh(), df,
+                                           std::string(dir / (interfaces_[i]->name() + ".stl")));
+        }
+      }
+    } catch (const std::exception& e) {
+      FatalErrorInFunction << "fsiCoupling: writing the skin for remeshing: " << e.what() << exit(FatalError);
+    }
+    OFstream request(dir / "request");
+    // Windows counted from t = 0, like the progress lines (scheme_->window() counts this run segment's).
+    request << "time " << time_.timeName() << nl << "window "
+            << label(std::lround(time_.value() / time_.deltaTValue())) << nl << "reason "
+            << remeshReason_.c_str() << nl;
+    Info << "[fsi] remesh: " << remeshReason_.c_str() << " at t = " << time_.timeName()
+         << " s: the fields and the structure's state are written, the skin is in " << dir
+         << "; the run ends here for a new mesh" << endl;
   }
 }
 
@@ -518,6 +629,8 @@ void fsiCoupling::writeStructure() {
         std::vector<double>(h[k].data(), h[k].data() + h[k].size());
   const Eigen::VectorXd& applied = scheme_->loadsAtWindowStart();
   arrays["applied_loads"] = std::vector<double>(applied.data(), applied.data() + applied.size());
+  if (!interfaceReference_.empty()) arrays["interface_reference"] = interfaceReference_;
+  if (remeshRequested_) arrays["remesh_reference"] = lastSent_;
   structure_->writeState(std::string(stateFile(time_.timePath())), arrays);
 }
 
@@ -530,7 +643,21 @@ void fsiCoupling::keepLastStableState(bool restore) {
 void fsiCoupling::checkMesh() {
   if (!meshGuard_) return;
   const fsiMeshGuard::Report r = meshGuard_->check();
-  if (!r.failed) return;
+  if (!r.failed) {
+    const scalar below = meshGuard_->remeshBelow();
+    if (r.remesh) {
+      remeshRequested_ = true;
+      std::ostringstream why;
+      if (r.badPyramids > 0)
+        why << r.badPyramids << " wrong-oriented face(s), the first at (" << r.badFaceCentre.x() << ' '
+            << r.badFaceCentre.y() << ' ' << r.badFaceCentre.z() << "); ";
+      why << "smallest cell volume ratio " << r.minRatio;
+      if (r.minRatio < below) why << " < remeshBelow " << below;
+      why << " (cell at (" << r.centre.x() << ' ' << r.centre.y() << ' ' << r.centre.z() << "))";
+      remeshReason_ = why.str();
+    }
+    return;
+  }
   // The structure has not taken this pass's load yet: it is at the end of the last accepted window, except
   // after an earlier pass of an implicit window, which its checkpoint (the window's start) undoes.
   if (Pstream::master()) {
@@ -698,8 +825,12 @@ bool fsiCoupling::execute() {
       // OpenFOAM writes the fields at the end only when it is one of its write times (and the implicit
       // scheme's spare step moved the end): write the last window now, fields and structure state together,
       // so a continued run can start from it.
-      if (finished && !time_.writeTime()) const_cast<Time&>(time_).writeNow();
-      if (time_.writeTime() || finished) writeStructure();
+      if (remeshRequested_ && !finished) {
+        requestRemesh();
+      } else {
+        if (finished && !time_.writeTime()) const_cast<Time&>(time_).writeNow();
+        if (time_.writeTime() || finished) writeStructure();
+      }
     } catch (const Foam::error&) {
       throw;
     } catch (const std::exception& e) {
@@ -719,6 +850,7 @@ bool fsiCoupling::execute() {
     const_cast<Time&>(time_).setEndTime(time_.value());
     end();
   }
+  if (remeshRequested_) end();  // writeAndEnd() has ended the time loop
   return true;
 }
 

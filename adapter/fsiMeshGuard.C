@@ -94,17 +94,24 @@ fsiMeshGuard::Report fsiMeshGuard::check() {
   r.maxNonOrth = radToDeg(std::acos(min(1.0, max(-1.0, minCos))));
 
   r.rank = ownerOfMin(localMin, r.minRatio);
-  r.failed = r.inverted > 0 || r.badPyramids > 0 || r.belowRatio > 0;
+  // With remeshing on, a wrong-oriented face in cells that all keep a positive volume above minVolumeRatio
+  // asks for a new mesh rather than a stop: the window's flow is still finite there, and a mesh snapped
+  // around a deformed canopy can fold a face at a feature while no cell has lost much volume.
+  const bool remeshing = remeshBelow_ > 0;
+  r.failed = r.inverted > 0 || r.belowRatio > 0 || (r.badPyramids > 0 && !remeshing);
   worstRatio_ = min(worstRatio_, r.minRatio);
   if (worstRatio_ == r.minRatio) worstRatioTime_ = mesh_.time().value();
   maxNonOrthSeen_ = max(maxNonOrthSeen_, r.maxNonOrth);
-  if (r.failed) {
+  r.remesh = !r.failed && remeshing && (r.minRatio < remeshBelow_ || r.badPyramids > 0);
+  if (r.failed || r.remesh) {
     // Where: the worst cell, then the interface face nearest to it (over all ranks).
     const bool mine = Pstream::myProcNo() == r.rank && worst >= 0;
     r.cell = fromRank(r.rank, mine ? worst : label(0));
     r.centre = fromRank(r.rank, mine ? mesh_.C()[worst] : point(Zero));
     r.volume = fromRank(r.rank, mine ? V[worst] : 0.0);
     r.volume0 = fromRank(r.rank, mine ? V0_[worst] : 0.0);
+  }
+  if (r.failed || r.remesh) {
     scalar nearest = GREAT;
     label patchIndex = -1, face = -1;
     forAll(patches_, i) {

@@ -345,6 +345,10 @@ void StructureParticipant::writeState(const std::filesystem::path& file,
   structure::writeState(file, s);
 }
 
+void StructureParticipant::alignTime(double t) {
+  cd_->restore(scene_->model->nodes.x, scene_->model->nodes.v, t, cd_->lastDt(), cd_->steps());
+}
+
 std::map<std::string, std::vector<double>> StructureParticipant::readState(
     const std::filesystem::path& file) {
   const structure::StateSnapshot s = structure::readState(file);

@@ -66,6 +66,9 @@ class StructureParticipant final : public StructureSolver {
   int numInterfaceNodes() const { return int(mesh_.points.size()); }
 
   double time() const { return cd_->time(); }
+  /// Sets the structure's clock to `t` (state unchanged): a restart takes the fluid's time, which OpenFOAM
+  /// reads from the time directory's name, rounded to its timePrecision (the state file keeps the exact one).
+  void alignTime(double t);
   /// Structural steps a fluid step of length dt takes: subcycleCount() of the stable step at the last force
   /// evaluation (advance() evaluates it at the window's start state), at least setMinSubcycles().
   int subcyclesFor(double dt) const;

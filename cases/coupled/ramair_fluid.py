@@ -117,6 +117,10 @@ SETTINGS = {
     "smoothing_length": ("float", 0.0, 0.0, 1.0,
                          "coupled yes: the fluid's skin moves with the displacement smoothed over this length [m] "
                          "(the adapter's smoothingLength): the flow sees a crumpled trailing edge's mean surface"),
+    "remesh_below": ("float", 0.0, 0.0, 0.95,
+                     "coupled yes: when the moved mesh has crushed a cell below this fraction of its volume, the "
+                     "run stops cleanly, a new mesh is snapped to the canopy as it is and the run continues on it "
+                     "(the adapter's remeshBelow; Allrun does the rest; 0: off)"),
     "tolerance": ("float", 1e-3, 1e-12, 0.5, "implicit: relative interface-displacement residual of a step"),
     "max_iterations": ("int", 20, 1, 1000, "implicit: iterations per step at most"),
     "subcycles": ("int", 1, 1, 100000, "structural steps per fluid step at least"),
@@ -209,7 +213,7 @@ def read_settings(path):
     else:
         # The structure's keys mean nothing to a rigid wing: say so rather than run without them.
         for key in ("brake_right", "trailing_edge_tape", "equilibrium_start", "keep_side", "gap_correction",
-                    "smoothing_length", "conserve_moment"):
+                    "smoothing_length", "conserve_moment", "remesh_below"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} needs coupled yes (the rigid wing has no structure)")
     return values
@@ -349,6 +353,39 @@ def domain(geo, s, h0):
     return bmin, bmax, n
 
 
+def write_block_mesh(sysd, src, bmin, bmax, n, mirror):
+    """system/blockMeshDict: the background box bmin..bmax in n cells (mirror: the half y >= 0 with the plane
+    y = 0 as the patch `mirror`)."""
+    verts = [(bmin[0], bmin[1], bmin[2]), (bmax[0], bmin[1], bmin[2]), (bmax[0], bmax[1], bmin[2]),
+             (bmin[0], bmax[1], bmin[2]), (bmin[0], bmin[1], bmax[2]), (bmax[0], bmin[1], bmax[2]),
+             (bmax[0], bmax[1], bmax[2]), (bmin[0], bmax[1], bmax[2])]
+    if mirror:
+        what = ("// The half y >= 0 of the background box around the wing, cells of one chord; `mirror` (y = 0)\n"
+                "// disappears when mirrorMesh adds the other half, every other outer face is the far field.\n")
+        patches = ("  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (3 7 6 2)); }\n"
+                   "  mirror { type patch; faces ((0 1 5 4)); }\n")
+    else:
+        what = "// Background box around the wing, cells of one chord; every outer face is the far field.\n"
+        patches = "  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }\n"
+    write(os.path.join(sysd, "blockMeshDict"), "dictionary", "blockMeshDict", src,
+          what + "scale 1;\nvertices\n(\n" + "".join(f"  {v3(v)}\n" for v in verts) + ");\n"
+          f"blocks ( hex (0 1 2 3 4 5 6 7) ({n[0]} {n[1]} {n[2]}) simpleGrading (1 1 1) );\n"
+          "boundary\n(\n" + patches + ");\n")
+
+
+def write_remesh_dicts(case):
+    """A new mesh of the same case around the canopy as a run left it (remesh_below): the whole box, also
+    when the first mesh was mirrored (the canopy is no longer symmetric once a brake is pulled); the same
+    cells, refinement and locationInMesh, the skin in constant/triSurface/wing.stl replaced by Allrun."""
+    rec = load_record(case)
+    dom = rec["domain"]
+    bmin, bmax, n = list(dom["min"]), list(dom["max"]), list(dom["cells"])
+    if rec["settings"]["mirror_mesh"] == "yes":
+        bmin[1], n[1] = -bmax[1], 2 * n[1]
+    write_block_mesh(os.path.join(case, "system"), os.path.basename(rec["settings_file"]), bmin, bmax, n, False)
+    print(f"ramair_fluid: remesh: background {n[0]}x{n[1]}x{n[2]} over the whole box")
+
+
 def write_case(settings_path, stl_path, case):
     s = read_settings(settings_path)
     tris = read_stl(stl_path)
@@ -371,25 +408,12 @@ def write_case(settings_path, stl_path, case):
         n[1] = max(1, math.ceil((hi[1] + s["lateral"] * c) / d["h0"]))
         bmin[1], bmax[1] = 0.0, n[1] * d["h0"]
 
-    verts = [(bmin[0], bmin[1], bmin[2]), (bmax[0], bmin[1], bmin[2]), (bmax[0], bmax[1], bmin[2]),
-             (bmin[0], bmax[1], bmin[2]), (bmin[0], bmin[1], bmax[2]), (bmax[0], bmin[1], bmax[2]),
-             (bmax[0], bmax[1], bmax[2]), (bmin[0], bmax[1], bmax[2])]
     if mirror:
-        what = ("// The half y >= 0 of the background box around the wing, cells of one chord; `mirror` (y = 0)\n"
-                "// disappears when mirrorMesh adds the other half, every other outer face is the far field.\n")
-        patches = ("  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (3 7 6 2)); }\n"
-                   "  mirror { type patch; faces ((0 1 5 4)); }\n")
         write(os.path.join(sysd, "mirrorMeshDict"), "dictionary", "mirrorMeshDict", src,
               "// The half mesh's mirror image about y = 0; the faces on the plane become internal faces.\n"
               "planeType pointAndNormal;\npointAndNormalDict { point (0 0 0); normal (0 1 0); }\n"
               "planeTolerance 1e-6;\n")
-    else:
-        what = "// Background box around the wing, cells of one chord; every outer face is the far field.\n"
-        patches = "  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (0 1 5 4) (3 7 6 2)); }\n"
-    write(os.path.join(sysd, "blockMeshDict"), "dictionary", "blockMeshDict", src,
-          what + "scale 1;\nvertices\n(\n" + "".join(f"  {v3(v)}\n" for v in verts) + ");\n"
-          f"blocks ( hex (0 1 2 3 4 5 6 7) ({n[0]} {n[1]} {n[2]}) simpleGrading (1 1 1) );\n"
-          "boundary\n(\n" + patches + ");\n")
+    write_block_mesh(sysd, src, bmin, bmax, n, mirror)
 
     write(os.path.join(sysd, "surfaceFeatureExtractDict"), "dictionary", "surfaceFeatureExtractDict", src,
           "// Sharp edges of the skin (trailing edge, rib seams at the tips) for snappyHexMesh's feature snapping.\n"
@@ -538,6 +562,9 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
                 f"equilibriumStart {s['equilibrium_start']};{carry_from}"
                 if s["structure_mode"] == "equilibrium" else
                 f"structureMode timeAccurate; subcycles {s['subcycles']};")
+        remesh = (f"\n    remeshBelow {s['remesh_below']:.9g};   // then Allrun snaps a new mesh to the canopy"
+                  "\n    remeshSurface \"constant/triSurface/generated/wing.stl\";   // the design skin, moved"
+                  if s["remesh_below"] > 0 else "")
         coupling = f"""\
   // The canopy of structure-coupled.yaml (structure.yaml with this case's ram pressure, line-drag wind and
   // coupling interface) on the wing patch; the fluid's pressure is gauge (freestreamPressure 0) like the ram
@@ -551,16 +578,20 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
     {mode}
     loadRelaxation {s['load_relaxation']:.9g}; keepSide {s['keep_side']};
     gapCorrection {s['gap_correction']}; smoothingLength {s['smoothing_length']:.9g};
-    conserveMoment {s['conserve_moment']};
+    conserveMoment {s['conserve_moment']};{remesh}
   }}
 """
+    # A run that stops for new meshes restarts from a time directory's name: 12 digits keep the restarted
+    # times on the steps' (8 drifted by 5e-9 s per restart until OpenFOAM lengthened the names itself).
+    precision = 12 if s["remesh_below"] > 0 else 8
+
     def control_dict(libs, fsi, steps, end, every):
         return f"""\
 application pimpleFoam;
 // deltaT = courant {s['courant']:g} * finest wing cell {d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {steps} steps
 startFrom latestTime; startTime 0; stopAt endTime; endTime {end:.9g}; deltaT {d['deltaT']:.9g};
 writeControl timeStep; writeInterval {every}; purgeWrite 0; writeFormat ascii; writePrecision 10;
-writeCompression off; timeFormat general; timePrecision 8; runTimeModifiable false; adjustTimeStep no;
+writeCompression off; timeFormat general; timePrecision {precision}; runTimeModifiable false; adjustTimeStep no;
 {libs}functions
 {{
 {fsi}  // CL, CD about the free stream; reference area = the wing's area projected on the plane normal to the lift
@@ -867,6 +898,46 @@ def check_mesh(case, log="log.checkMesh"):
     return out
 
 
+def read_force_coeffs(case):
+    """postProcessing/forceCoeffs/START/coefficient.dat of every run segment (a restart or a new mesh starts
+    a new START), joined in time: a segment restarted at START writes the steps after it, and replaces what
+    an earlier one wrote for them.
+    Returns (header, rows, the first file)."""
+    base = os.path.join(case, "postProcessing", "forceCoeffs")
+    starts = []
+    if os.path.isdir(base):
+        for name in os.listdir(base):
+            if NUMBER.match(name) and os.path.exists(os.path.join(base, name, "coefficient.dat")):
+                starts.append((float(name), name))
+    header, rows, first = None, [], os.path.join(base, "0", "coefficient.dat")
+    for i, (t0, name) in enumerate(sorted(starts)):
+        path = os.path.join(base, name, "coefficient.dat")
+        h, r = read_table(path)
+        if i == 0:
+            header, first = h, path
+        elif h != header:
+            raise InputError(f"{path}: columns {h} differ from those of {first}")
+        rows = [row for row in rows if row[0] <= t0 * (1 + 1e-9)] + r
+    return header, rows, first
+
+
+def remeshes(case):
+    """The new meshes of a run with remesh_below: time, window and reason of each (structure/remesh.N/request),
+    and the checkMesh of each new mesh (log.checkMesh.remeshN)."""
+    out = []
+    n = 1
+    while os.path.exists(os.path.join(case, "structure", f"remesh.{n}", "request")):
+        with open(os.path.join(case, "structure", f"remesh.{n}", "request")) as f:
+            r = dict(line.rstrip("\n").split(" ", 1) for line in f if " " in line)
+        item = {"time": float(r.get("time", "nan")), "window": int(r.get("window", "-1")), "reason": r.get("reason", "")}
+        log = f"log.checkMesh.remesh{n}"
+        if os.path.exists(os.path.join(case, log)):
+            item["mesh"] = check_mesh(case, log)
+        out.append(item)
+        n += 1
+    return out
+
+
 def summary(case):
     rec = load_record(case)
     s, d = rec["settings"], rec["derived"]
@@ -884,8 +955,7 @@ def summary(case):
            "incidence_deg": rec["wing"]["incidence_deg"], "alpha_effective_deg": d["alpha_effective_deg"],
            "CL": d["CL_helmbold"]}
     out["estimate"] = est
-    coeff = os.path.join(case, "postProcessing", "forceCoeffs", "0", "coefficient.dat")
-    header, rows = read_table(coeff) if os.path.exists(coeff) else (None, [])
+    header, rows, coeff = read_force_coeffs(case)
     if rows and not (header and all(k in header for k in ("Time", "Cd", "Cl", "Cs", "CmPitch"))):
         raise InputError(f"{coeff}: no 'Time Cd Cs Cl ... CmPitch' header")
     if rows:
@@ -918,6 +988,7 @@ def summary(case):
         out["coupled"] = coupled_summary(case, d)
         if os.path.exists(os.path.join(case, "log.checkMesh.final")):
             out["mesh_final"] = check_mesh(case, "log.checkMesh.final")
+        out["remeshes"] = remeshes(case)
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(out, f, indent=1)
     m = out["mesh"]
@@ -943,6 +1014,10 @@ def summary(case):
         print(f"  lines: max {c['line_tension_max_N']:.2f} N, left/right sums {c['lines_left_sum_N']:.2f} / "
               f"{c['lines_right_sum_N']:.2f} N; skin stress mean {c['skin_stress_mean_Pa'] / 1e3:.1f} kPa, max "
               f"{c['skin_stress_max_Pa'] / 1e3:.1f} kPa (ratio {c['stress_max_over_mean']:.2f})")
+    for i, r in enumerate(out.get("remeshes", []), 1):
+        m = r.get("mesh", {})
+        print(f"remesh {i}: t = {r['time']:g} s (window {r['window']}), {r['reason']}; new mesh {m.get('cells', '?')} "
+              f"cells, max skewness {m.get('max_skewness', '?')}")
     if "flow" in out:
         fl = out["flow"]
         print(f"flow: {fl['steps']} steps, CL {fl['CL']:.4f}, CD {fl['CD']:.4f}, L/D {fl['L_over_D']:.2f} "
@@ -1047,7 +1122,7 @@ def coupled_summary(case, d):
 
 def main(argv):
     cmds = {"generate-args": 1, "check": 1, "write": 3, "structure": 3, "fields": 1, "summary": 1,
-            "patch-area": 2, "mirror-check": 1, "mirror-finish": 1}
+            "patch-area": 2, "mirror-check": 1, "mirror-finish": 1, "remesh-dicts": 1}
     if len(argv) < 2 or argv[1] not in cmds or len(argv) != 2 + cmds[argv[1]]:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         return 2
@@ -1079,6 +1154,8 @@ def main(argv):
             mirror_check(*args)
         elif cmd == "mirror-finish":
             mirror_finish(*args)
+        elif cmd == "remesh-dicts":
+            write_remesh_dicts(*args)
         else:
             area, n = patch_area(*args)
             print(f"{area:.9g} {n}")

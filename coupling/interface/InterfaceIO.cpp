@@ -3,12 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <map>
 #include <new>
+#include <sstream>
+#include <stdexcept>
 #include <string_view>
 #include <system_error>
 #include <vector>
@@ -505,6 +509,94 @@ InterfaceMesh readInterface(const std::string& spec) {
     // The readers allocate at most a small multiple of the file sizes; this machine has not that much.
     throw InputError(fmt::format("{}: not enough memory to read this interface mesh", spec));
   }
+}
+
+InterfaceMesh readStlSurface(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{}: cannot be read", file.string()));
+  InterfaceMesh m;
+  m.name = file.string();
+  std::map<std::array<double, 3>, int> index;
+  std::vector<int> facet;
+  std::string line;
+  long lineNo = 0;
+  bool solid = false;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    std::istringstream words(line);
+    std::string key;
+    if (!(words >> key)) continue;
+    if (!solid) {
+      if (key != "solid")
+        throw InputError(
+            fmt::format("{}:{}: not an ASCII STL (no 'solid' first; a binary STL must be converted, "
+                        "e.g. with surfaceConvert)",
+                        file.string(), lineNo));
+      solid = true;
+      continue;
+    }
+    if (key != "vertex") continue;
+    std::array<double, 3> x{};
+    if (!(words >> x[0] >> x[1] >> x[2]) || !std::isfinite(x[0]) || !std::isfinite(x[1]) ||
+        !std::isfinite(x[2]))
+      throw InputError(fmt::format("{}:{}: a vertex needs three finite numbers", file.string(), lineNo));
+    const auto [it, added] = index.emplace(x, int(m.points.size()));
+    if (added) m.points.push_back(x);
+    facet.push_back(it->second);
+    if (facet.size() == 3) {
+      m.addFace({facet[0], facet[2], facet[1]});  // the fluid side's orientation
+      facet.clear();
+    }
+  }
+  if (!facet.empty())
+    throw InputError(fmt::format("{}: the last facet has {} vertices, not 3", file.string(), facet.size()));
+  if (m.numFaces() == 0) throw InputError(fmt::format("{}: no facets", file.string()));
+  return m;
+}
+
+void writeInterfaceStl(const InterfaceMesh& mesh, const std::vector<double>& displacement,
+                       const std::filesystem::path& file) {
+  if (!displacement.empty() && displacement.size() != 3 * mesh.points.size())
+    throw std::invalid_argument(fmt::format("writeInterfaceStl: {} displacement values for {} points of {}",
+                                            displacement.size(), mesh.points.size(), mesh.name));
+  auto at = [&](int n) {
+    std::array<double, 3> x = mesh.points[std::size_t(n)];
+    if (!displacement.empty())
+      for (std::size_t k = 0; k < 3; ++k) x[k] += displacement[3 * std::size_t(n) + k];
+    return x;
+  };
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot be written", file.string()));
+  std::string name = mesh.name.empty() ? std::string("interface") : mesh.name;
+  std::replace_if(
+      name.begin(), name.end(), [](unsigned char c) { return std::isspace(c) != 0; }, '_');
+  out << "solid " << name << '\n';
+  auto facet = [&](const std::array<double, 3>& a, const std::array<double, 3>& b,
+                   const std::array<double, 3>& c) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    for (double& x : nrm) x = len > 0 ? x / len : 0.0;
+    out << fmt::format("facet normal {:.9g} {:.9g} {:.9g}\n outer loop\n", nrm[0], nrm[1], nrm[2]);
+    for (const auto* p : {&a, &b, &c})
+      out << fmt::format("  vertex {:.12g} {:.12g} {:.12g}\n", (*p)[0], (*p)[1], (*p)[2]);
+    out << " endloop\nendfacet\n";
+  };
+  for (int f = 0; f < mesh.numFaces(); ++f) {
+    const int* v = mesh.face(f);
+    const int n = mesh.faceSize(f);
+    if (n == 3) {
+      facet(at(v[0]), at(v[2]), at(v[1]));  // the other way round
+      continue;
+    }
+    std::array<double, 3> centre{0, 0, 0};
+    for (int j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < 3; ++k) centre[k] += at(v[j])[k] / n;
+    for (int j = 0; j < n; ++j) facet(centre, at(v[(j + 1) % n]), at(v[j]));
+  }
+  out << "endsolid " << name << '\n';
+  if (!out) throw std::runtime_error(fmt::format("{}: writing failed (disk full?)", file.string()));
 }
 
 }  // namespace fsi::coupling

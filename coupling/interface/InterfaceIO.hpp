@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "coupling/interface/InterfaceMesh.hpp"
 
@@ -24,5 +25,20 @@ InterfaceMesh readGmshInterface(const std::filesystem::path& file, const std::st
 /// and compressed files are reported with the conversion to run). Faces keep OpenFOAM's orientation (normal
 /// out of the fluid domain).
 InterfaceMesh readOpenFoamPatch(const std::filesystem::path& caseDir, const std::string& patch);
+
+/// An ASCII STL file as an interface mesh: vertices with the same coordinates merged, every facet a triangle
+/// turned to face the other way, so that the mesh has the fluid side's orientation (an STL's facets face out
+/// of the body, an OpenFOAM patch's into it); writeInterfaceStl turns them back. The undeformed skin a
+/// remeshed run moves and writes. Binary STL and malformed lines are fsi::InputError naming the file and
+/// line.
+InterfaceMesh readStlSurface(const std::filesystem::path& file);
+
+/// Writes `mesh` moved by `displacement` (3 per point; empty: unmoved) as an ASCII STL solid named after the
+/// mesh: each polygon as the fan of triangles about its vertex average, turned to face the other way
+/// (OpenFOAM's patch normals point out of the fluid, into the body; an STL's point out of the body). The
+/// surface a new fluid mesh is snapped to when a run is remeshed. Throws std::runtime_error naming the file
+/// when it cannot be written, std::invalid_argument for a displacement of the wrong size.
+void writeInterfaceStl(const InterfaceMesh& mesh, const std::vector<double>& displacement,
+                       const std::filesystem::path& file);
 
 }  // namespace fsi::coupling

@@ -515,6 +515,24 @@ OptionSchema couplingOptionSchema() {
   // "When the run stops"); 0 keeps only the inversion checks.
   coupled.push_back(realOption("minVolumeRatio", "0.01", Bound{0, true}, Bound{1, false},
                                "meshGuard: a cell below this fraction of its initial volume stops the run"));
+  // Remeshing (docs/COUPLING.md "Remeshing during a run"): the mesh moved from one undeformed shape can
+  // follow only so much of the canopy's motion; past that, a new mesh around the canopy as it is now.
+  coupled.push_back(realOption(
+      "remeshBelow", "0", Bound{0, true}, Bound{1, false},
+      "meshGuard: a cell below this fraction of its volume in the undeformed mesh, or a wrong-oriented face, "
+      "ends the run cleanly for a new mesh: the fields and the structure's state are written, the fluid's "
+      "skin "
+      "as it is now goes to structure/remesh/PATCH.stl; 0: off"));
+  coupled.push_back(wordSpec(
+      "remeshSurface", OptionType::Text, "", {},
+      "remeshBelow: the undeformed skin (ASCII STL, one interface patch) that is moved with the canopy and "
+      "written for the new mesh; without it the patch's own faces are (each new mesh then snaps to the last "
+      "one's faceted skin and loses a little of the curvature every time)"));
+  coupled.push_back(wordSpec(
+      "interfaceReference", OptionType::Choice, "design", {"design", "restart"},
+      "the fluid mesh's undeformed skin is the structure's design shape (design) or the shape of the state "
+      "the "
+      "run restarts from (restart: a mesh made around the deformed canopy; later restarts keep it)"));
   coupled.push_back(wordSpec("verifyCheckpoint", OptionType::Switch, "no", {},
                              "debug: solve every pass twice from the checkpoint, report the differences"));
   OptionSpec progress = integerOption("progress", "", Bound{0, true}, std::nullopt,

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "structure/io/GmshReader.hpp"
+#include "structure/io/MeshFileWriters.hpp"
 #include "structure/io/TextNumbers.hpp"
 #include "structure/model/Error.hpp"
 
@@ -572,17 +573,7 @@ void writeInterfaceStl(const InterfaceMesh& mesh, const std::vector<double>& dis
       name.begin(), name.end(), [](unsigned char c) { return std::isspace(c) != 0; }, '_');
   out << "solid " << name << '\n';
   auto facet = [&](const std::array<double, 3>& a, const std::array<double, 3>& b,
-                   const std::array<double, 3>& c) {
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-    for (double& x : nrm) x = len > 0 ? x / len : 0.0;
-    out << fmt::format("facet normal {:.9g} {:.9g} {:.9g}\n outer loop\n", nrm[0], nrm[1], nrm[2]);
-    for (const auto* p : {&a, &b, &c})
-      out << fmt::format("  vertex {:.12g} {:.12g} {:.12g}\n", (*p)[0], (*p)[1], (*p)[2]);
-    out << " endloop\nendfacet\n";
-  };
+                   const std::array<double, 3>& c) { structure::writeStlFacet(out, a, b, c); };
   for (int f = 0; f < mesh.numFaces(); ++f) {
     const int* v = mesh.face(f);
     const int n = mesh.faceSize(f);

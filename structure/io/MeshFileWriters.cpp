@@ -105,6 +105,19 @@ void writeMsh(const MeshData& mesh, const std::filesystem::path& file) {
   });
 }
 
+void writeStlFacet(std::ostream& out, const std::array<double, 3>& a, const std::array<double, 3>& b,
+                   const std::array<double, 3>& c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (double& x : n) x = len > 0 ? x / len : 0.0;
+  out << fmt::format("  facet normal {:.9g} {:.9g} {:.9g}\n    outer loop\n", n[0], n[1], n[2]);
+  for (const auto* p : {&a, &b, &c})
+    out << fmt::format("      vertex {:.17g} {:.17g} {:.17g}\n", (*p)[0], (*p)[1], (*p)[2]);
+  out << "    endloop\n  endfacet\n";
+}
+
 void writeStl(const MeshData& mesh, const std::vector<int>& triangles, const std::filesystem::path& file,
               const std::string& solid) {
   std::string name;
@@ -112,18 +125,7 @@ void writeStl(const MeshData& mesh, const std::vector<int>& triangles, const std
   writeAtomically(file, "STL writer", [&](std::ofstream& out) {
     out << "solid " << name << "\n";
     auto facet = [&](const std::array<int, 3>& t) {
-      const auto& a = mesh.points[t[0]];
-      const auto& b = mesh.points[t[1]];
-      const auto& c = mesh.points[t[2]];
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-      const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      for (double& x : n) x = len > 0 ? x / len : 0.0;
-      out << fmt::format("  facet normal {:.9g} {:.9g} {:.9g}\n    outer loop\n", n[0], n[1], n[2]);
-      for (const auto* p : {&a, &b, &c})
-        out << fmt::format("      vertex {:.17g} {:.17g} {:.17g}\n", (*p)[0], (*p)[1], (*p)[2]);
-      out << "    endloop\n  endfacet\n";
+      writeStlFacet(out, mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
     };
     if (triangles.empty()) {
       for (const auto& t : mesh.triangles) facet(t);

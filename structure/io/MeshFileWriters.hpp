@@ -8,7 +8,9 @@
 //    mesh around.
 // Both are written through io/AtomicFile (temporary file, fsync, rename): a failed write leaves no half file.
 
+#include <array>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,11 @@ void writeMsh(const MeshData& mesh, const std::filesystem::path& file);
 
 /// Writes the triangles `triangles` (indices into mesh.triangles; all when empty) as an ASCII STL solid named
 /// `solid`. Throws std::runtime_error naming the file when it cannot be written.
+/// One ASCII STL facet a, b, c (its normal from the vertex order, counter-clockwise; zero for a degenerate
+/// one), at full double precision: the facet writer of writeStl and of the coupling's interface skins.
+void writeStlFacet(std::ostream& out, const std::array<double, 3>& a, const std::array<double, 3>& b,
+                   const std::array<double, 3>& c);
+
 void writeStl(const MeshData& mesh, const std::vector<int>& triangles, const std::filesystem::path& file,
               const std::string& solid);
 

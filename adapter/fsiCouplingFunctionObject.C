@@ -187,6 +187,13 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   if (o.given("remeshSurface") && patchIDs_.size() != 1)
     FatalIOErrorInFunction(dict) << "fsiCoupling: remeshSurface is the skin of one interface patch; this run "
                                  << "couples " << patchIDs_.size() << " patches" << exit(FatalIOError);
+  // The fluid's skin is moved with the smoothed displacement, the remeshSurface would not be: the new mesh
+  // would not continue the old one's wall.
+  if (o.given("remeshSurface") && o.real("smoothingLength") > 0)
+    FatalIOErrorInFunction(dict)
+        << "fsiCoupling: remeshSurface with smoothingLength > 0 is not supported (the "
+        << "surface is moved without the smoothing); leave remeshSurface out to "
+        << "write the patch's own skin" << exit(FatalIOError);
   // restoreMeshPoints is an option of the implicit scheme only (the staggered one never repeats a step).
   checkpoint_.reset(
       new fsiFluidCheckpoint(mesh_, verifyCheckpoint_ || !implicit_ || o.flag("restoreMeshPoints")));

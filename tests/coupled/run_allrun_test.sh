@@ -41,6 +41,27 @@ PY
 }
 # close A B TOL: |A - B| <= TOL * max(|A|, |B|)
 close() { /usr/bin/python3 -c "import sys; a, b, t = map(float, sys.argv[1:]); print(f'{a:.9g} vs {b:.9g}: relative difference {abs(a-b)/max(abs(a),abs(b)):.2e} (limit {t:g})'); sys.exit(0 if abs(a-b) <= t*max(abs(a),abs(b)) else 1)" "$@"; }
+# force_close SERIAL PARALLEL LIMIT: the interface force of every window (structure/coupling.csv, fluid side)
+# agrees between the two runs within LIMIT of the largest force of the serial run
+force_close() {
+  /usr/bin/python3 - "$1" "$2" "$3" "$src" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[4])
+import summarize
+s, p = summarize.coupling_rows(sys.argv[1]), summarize.coupling_rows(sys.argv[2])
+limit = float(sys.argv[3])
+if len(s) != len(p) or not s:
+    sys.exit(f"serial has {len(s)} windows, parallel {len(p)}")
+keys = ("Fx_fluid", "Fy_fluid", "Fz_fluid")
+def vec(r):
+    return [float(r[k]) for k in keys]
+scale = max(sum(x * x for x in vec(r)) ** 0.5 for r in s)
+worst, when = max((sum((a - b) ** 2 for a, b in zip(vec(x), vec(y))) ** 0.5, x["time"]) for x, y in zip(s, p))
+print(f"interface force, serial vs 2 ranks over {len(s)} windows: largest difference {worst:.3g} N at t = {when} "
+      f"= {worst / scale:.2e} of the largest force {scale:.3g} N (limit {limit:g})")
+sys.exit(0 if worst <= limit * scale else 1)
+PY
+}
 # reached CASE END: summary.json says the run ended at END
 reached() {
   local t
@@ -153,6 +174,13 @@ case "$mode" in
     tol=$(foamDictionary -entry functions/fsi/tolerance -value system/controlDict 2>/dev/null || echo 1e-5)
     tol=$(/usr/bin/python3 -c "import sys; print(max(float(sys.argv[1]), 5e-5))" "$tol")
     close "$(last_probe "$work/serial/$name")" "$(last_probe .)" "$tol" || fail "serial and 2-rank answers differ"
+    # The interface force too, window by window (issue 15: at the cavity's old tolerance 1e-4 the two runs' Fz
+    # differed by a third of Fz, from the iteration error's acceleration noise). The force is the displacement's
+    # second difference over the window times the added mass, so it carries the floor above amplified. Measured
+    # (2026-11-28, the test's END): cavity 7.5e-5 of the largest force (tolerance 1e-6; 3.4e-3 at its old 1e-4),
+    # inflated-patch 3.3e-5, baffle-canopy 4.2e-4, sail 1.0e-5. 1e-3 leaves room for those and still fails for
+    # the cavity's old noise or a part of the interface lost on one rank.
+    force_close "$work/serial/$name" . 1e-3 || fail "serial and 2-rank interface forces differ"
     ;;
   tracked)
     command -v git > /dev/null && git -C "$repo" rev-parse > /dev/null 2>&1 || fail "needs the git checkout of the sources"

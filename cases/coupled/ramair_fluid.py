@@ -384,6 +384,10 @@ def write_remesh_dicts(case):
         bmin[1], n[1] = -bmax[1], 2 * n[1]
     write_block_mesh(os.path.join(case, "system"), os.path.basename(rec["settings_file"]), bmin, bmax, n, False)
     print(f"ramair_fluid: remesh: background {n[0]}x{n[1]}x{n[2]} over the whole box")
+    sd = os.path.join(case, "system", "snappyHexMeshDict")
+    t = open(sd).read()
+    assert t.count("minTetQuality 1e-15;") == 1
+    open(sd, "w").write(t.replace("minTetQuality 1e-15;", "minTetQuality 0.005;"))
 
 
 def write_case(settings_path, stl_path, case):
@@ -989,6 +993,8 @@ def summary(case):
         if os.path.exists(os.path.join(case, "log.checkMesh.final")):
             out["mesh_final"] = check_mesh(case, "log.checkMesh.final")
         out["remeshes"] = remeshes(case)
+        if s["brake_right"] > 0 and out["coupled"].get("windows"):
+            out["coupled"]["brake"] = brake_response(case, s, d, out["remeshes"])
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(out, f, indent=1)
     m = out["mesh"]
@@ -1018,6 +1024,16 @@ def summary(case):
         m = r.get("mesh", {})
         print(f"remesh {i}: t = {r['time']:g} s (window {r['window']}), {r['reason']}; new mesh {m.get('cells', '?')} "
               f"cells, max skewness {m.get('max_skewness', '?')}")
+    b = out.get("coupled", {}).get("brake")
+    if b and b["held"]:
+        h, p = b["held"], b["before"]
+        print(f"right brake {b['travel_m']:g} m, held for {b['held_windows']} windows: load about the anchor yaw "
+              f"{h['yaw_Nm']:.3f} N m ({'a right turn' if h['yaw_Nm'] < 0 else 'NOT a right turn'}; before "
+              f"{p['yaw_Nm']:.3f}), roll {h['roll_Nm']:.3f} N m (before {p['roll_Nm']:.3f}), side force "
+              f"{h['side_N']:.2f} N, brake lines right/left {h['brake_right_N']:.1f} / {h['brake_left_N']:.1f} N; "
+              f"{len(b['new_meshes'])} new meshes since the pull began; plots/brake.png")
+    elif b:
+        print("right brake: the run ended before the ramp did (plots/brake.png)")
     if "flow" in out:
         fl = out["flow"]
         print(f"flow: {fl['steps']} steps, CL {fl['CL']:.4f}, CD {fl['CD']:.4f}, L/D {fl['L_over_D']:.2f} "
@@ -1025,6 +1041,83 @@ def summary(case):
               f"{100 * fl['CD_spread_last_fifth']:.2f} %); Helmbold CL {est['CL']:.3f} (AR {d['aspect_ratio']:.2f}, "
               f"alpha {d['alpha_effective_deg']:.2f} deg from zero lift); "
               f"{fl.get('wall_s_per_step', float('nan')):.3f} s per step")
+
+
+def brake_response(case, s, d, new_meshes):
+    """What the pulled right brake does (brake_right > 0): the loads on the wing before the pull (the mean of
+    the last 20 windows before brake_start) and while the toggle is held (the mean of the windows after the
+    ramp), and their histories in plots/brake.png. Signs as a pilot reads them, for the flow's load on the
+    wing about the anchor (the supports' reaction with the opposite sign; x downstream, y to the right, z up):
+    yaw < 0 turns the nose (-x) towards +y, a right turn; roll > 0 lifts the right wing."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import summarize
+
+    rows = summarize.coupling_rows(case)
+    t0, t1 = s["brake_start"], s["brake_start"] + s["brake_duration"]
+    lift_dir, flow_dir = d["lift_dir"], d["flow_dir"]
+
+    def dot(a, b):
+        return sum(x * y for x, y in zip(a, b))
+
+    def series(r):
+        f = [float(r[f"F{c}_fluid"]) for c in "xyz"]
+        return {"yaw_Nm": -float(r["anchor_moment_z"]), "roll_Nm": -float(r["anchor_moment_x"]),
+                "side_N": f[1], "lift_N": dot(f, lift_dir), "drag_N": dot(f, flow_dir),
+                "brake_right_N": float(r["brake_tension_right"]), "brake_left_N": float(r["brake_tension_left"])}
+
+    t = [float(r["time"]) for r in rows]
+    v = [series(r) for r in rows]
+    before = [x for x, tt in zip(v, t) if tt <= t0][-20:]
+    held = [x for x, tt in zip(v, t) if tt >= t1]
+
+    def mean(part):
+        return {k: sum(x[k] for x in part) / len(part) for k in part[0]} if part else None
+
+    out = {"start_s": t0, "end_of_ramp_s": t1, "travel_m": s["brake_right"], "before": mean(before),
+           "held": mean(held), "held_windows": len(held),
+           "new_meshes": [m["time"] for m in new_meshes if m["time"] >= t0 - 1e-9]}
+    if held:
+        h = out["held"]
+        out["right_turn"] = h["yaw_Nm"] < 0 and h["brake_right_N"] > h["brake_left_N"]
+        out["held_range"] = {k: [min(x[k] for x in held), max(x[k] for x in held)] for k in held[0]}
+    plot_brake(case, t, v, out)
+    return out
+
+
+def plot_brake(case, t, v, b):
+    """plots/brake.png: yaw and roll of the load about the anchor, side force, lift and drag, brake line
+    tensions, from shortly before the pull to the end; the ramp shaded, new meshes marked."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("ramair_fluid: no matplotlib: plots/brake.png not written", file=sys.stderr)
+        return
+    lo = b["start_s"] - 0.5 * (b["end_of_ramp_s"] - b["start_s"])
+    keep = [i for i, tt in enumerate(t) if tt >= lo]
+    tt = [t[i] for i in keep]
+    panels = [("moments [N m]", [("yaw_Nm", "yaw of the load about the anchor (< 0: nose to the right)"),
+                                 ("roll_Nm", "roll (> 0: right wing up)")]),
+              ("side force [N]", [("side_N", "side force (+y: right)")]),
+              ("lift and drag [N]", [("lift_N", "lift"), ("drag_N", "drag")]),
+              ("brake lines [N]", [("brake_right_N", "right"), ("brake_left_N", "left")])]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(8, 9), sharex=True)
+    for ax, (label, curves) in zip(axes, panels):
+        for key, name in curves:
+            ax.plot(tt, [v[i][key] for i in keep], label=name)
+        ax.axvspan(b["start_s"], b["end_of_ramp_s"], color="0.9", label="pull (ramp)")
+        for i, tm in enumerate(b["new_meshes"]):
+            ax.axvline(tm, color="tab:red", ls=":", lw=0.8, label="new mesh" if i == 0 else None)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="best")
+    axes[-1].set_xlabel("time [s]")
+    fig.suptitle(f"right brake {b['travel_m']:g} m down over {b['end_of_ramp_s'] - b['start_s']:g} s")
+    fig.tight_layout()
+    os.makedirs(os.path.join(case, "plots"), exist_ok=True)
+    fig.savefig(os.path.join(case, "plots", "brake.png"), dpi=110)
+    plt.close(fig)
 
 
 def write_table(case, out):
@@ -1052,6 +1145,19 @@ def write_table(case, out):
          "Kalro-Tezduyar: 758, 4337 (110, 629 lb/in^2)"),
         ("max / mean", f"{c['stress_max_over_mean']:.2f}", "Kalro-Tezduyar: 5.7"),
     ]
+    b = c.get("brake")
+    if b and b["held"]:
+        h, p = b["held"], b["before"]
+        rows += [
+            ("right brake held: yaw, roll of the load about the anchor [N m]",
+             f"{h['yaw_Nm']:.3f}, {h['roll_Nm']:.3f} (before the pull {p['yaw_Nm']:.3f}, {p['roll_Nm']:.3f})",
+             "yaw < 0: the nose turns right (a right turn); roll > 0: the braked right wing lifted"),
+            ("right brake held: side force, lift, drag [N]",
+             f"{h['side_N']:.2f}, {h['lift_N']:.2f}, {h['drag_N']:.2f} (before {p['side_N']:.2f}, {p['lift_N']:.2f}, "
+             f"{p['drag_N']:.2f})", f"means over the {b['held_windows']} windows after the ramp; plots/brake.png"),
+        ]
+    elif b:
+        rows.append(("right brake", "the run ended before the ramp did", "plots/brake.png"))
     if c.get("skin_folds") is not None:
         rows.append(("skin edges turned > 90 deg from the design (folds probe)", f"{c['skin_folds']:.0f}",
                      "the trailing edge's crumple (docs/RAMAIR.md)"))

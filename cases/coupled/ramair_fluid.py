@@ -384,10 +384,6 @@ def write_remesh_dicts(case):
         bmin[1], n[1] = -bmax[1], 2 * n[1]
     write_block_mesh(os.path.join(case, "system"), os.path.basename(rec["settings_file"]), bmin, bmax, n, False)
     print(f"ramair_fluid: remesh: background {n[0]}x{n[1]}x{n[2]} over the whole box")
-    sd = os.path.join(case, "system", "snappyHexMeshDict")
-    t = open(sd).read()
-    assert t.count("minTetQuality 1e-15;") == 1
-    open(sd, "w").write(t.replace("minTetQuality 1e-15;", "minTetQuality 0.005;"))
 
 
 def write_case(settings_path, stl_path, case):

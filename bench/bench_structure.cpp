@@ -1,8 +1,11 @@
 // Google Benchmark of the structure solver's hot loops.
 //   build/bin/fsi_bench --benchmark_filter=Membrane      force kernel alone, 10^3..10^6 triangles (batched
 //                                                        and the per-element reference)
+//   build/bin/fsi_bench --benchmark_filter=Cable         cable force kernel alone, 10^3..10^6 cables (a
+//                                                        stretched cable net; batched, the per-cable
+//                                                        reference, viscous, 1 and 2 threads)
 //   build/bin/fsi_bench --benchmark_filter=Step          full central-difference step
-// items_per_second = element updates per second.
+// items_per_second = element updates per second (triangles or cables).
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -11,6 +14,7 @@
 #include <memory>
 
 #include "structure/effects/ThreadedForces.hpp"
+#include "structure/elements/CableForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/scene/Scene.hpp"
@@ -128,6 +132,109 @@ void BM_PressureKernel(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * m.membranes.count);
 }
 
+// A square net of about `cables` cables: an n x n grid of nodes 1 m wide with a cable along every grid
+// line segment (2 n (n - 1) cables, sorted like any model's), stretched by 0.3 % with ripples, so that about
+// 10 % of the cables are slack and the rest taut at strains up to 0.7 %; velocities for the viscous variant.
+struct CableNet {
+  Model model;
+  std::unique_ptr<CableForces> elastic, viscous, perElement, perElementViscous;
+};
+CableNet& cachedNet(long cables) {
+  static std::map<long, std::unique_ptr<CableNet>> cache;
+  auto& net = cache[cables];
+  if (net) return *net;
+  const int n = std::max(2, int(std::lround(0.5 + std::sqrt(0.25 + double(cables) / 2.0))));
+  MeshInput in;
+  in.mesh.name = "net";
+  auto node = [n](int i, int j) { return j * n + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      in.mesh.points.push_back({double(i) / (n - 1), double(j) / (n - 1), 0.0});
+      in.mesh.pointTags.push_back(long(in.mesh.points.size()));
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (i + 1 < n) in.mesh.lines.push_back({node(i, j), node(i + 1, j)});
+      if (j + 1 < n) in.mesh.lines.push_back({node(i, j), node(i, j + 1)});
+    }
+  in.cableMaterial = 0;
+  // A 4 mm aramid line: E = 70 GPa, A = 12.6 mm², 1440 kg/m³.
+  net = std::make_unique<CableNet>(
+      CableNet{buildModel({in}, {}, {CableMaterial{"line", 7.0e10, 1.26e-5, 1440}}), nullptr, nullptr,
+               nullptr, nullptr});
+  Nodes& N = net->model.nodes;
+  for (int i = 0; i < N.count; ++i) {
+    const double X = N.X[3 * i], Y = N.X[3 * i + 1];
+    N.x[3 * i] = 1.003 * X + 8e-5 * std::sin(50 * X) + 1e-4 * std::sin(40 * Y);
+    N.x[3 * i + 1] = 1.003 * Y + 6e-5 * std::sin(50 * Y);
+    N.x[3 * i + 2] = 1e-3 * std::sin(30 * X) * std::sin(20 * Y);
+    for (int k = 0; k < 3; ++k) N.v[3 * i + k] = 0.1 * std::sin(13.0 * i + 5.0 * k);
+  }
+  net->elastic = std::make_unique<CableForces>(net->model.cables, CableViscosity{});
+  net->viscous = std::make_unique<CableForces>(net->model.cables, CableViscosity{1.0e-7, 0.06});
+  net->perElement =
+      std::make_unique<CableForces>(net->model.cables, CableViscosity{}, CableKernel::PerElement);
+  net->perElementViscous =
+      std::make_unique<CableForces>(net->model.cables, CableViscosity{1.0e-7, 0.06}, CableKernel::PerElement);
+  return *net;
+}
+
+// The cable effect's addForces on the net, batched kernel or the per-cable reference (forces accumulate; the
+// arrays are not cleared, as in BM_MembraneKernel).
+void cableKernel(benchmark::State& state, bool viscous, CableKernel kernel = CableKernel::Batched) {
+  CableNet& net = cachedNet(state.range(0));
+  Model& m = net.model;
+  const Effect* cable = kernel == CableKernel::Batched
+                            ? (viscous ? net.viscous.get() : net.elastic.get())
+                            : (viscous ? net.perElementViscous.get() : net.perElement.get());
+  ForceContext ctx;
+  ctx.x = m.nodes.x.data();
+  ctx.v = m.nodes.v.data();
+  ctx.fint = m.nodes.fint.data();
+  ctx.fext = m.nodes.fext.data();
+  for (auto _ : state) {
+    ctx.minStableDt = 1e300;
+    cable->addForces(ctx);
+    benchmark::DoNotOptimize(ctx.minStableDt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * m.cables.count);
+  state.counters["cables"] = m.cables.count;
+}
+void BM_CableKernel(benchmark::State& state) {
+  cableKernel(state, false);
+}
+void BM_CableKernelViscous(benchmark::State& state) {
+  cableKernel(state, true);
+}
+void BM_CableKernelPerElement(benchmark::State& state) {
+  cableKernel(state, false, CableKernel::PerElement);
+}
+void BM_CableKernelViscousPerElement(benchmark::State& state) {
+  cableKernel(state, true, CableKernel::PerElement);
+}
+// The cable effect through ThreadedForces (clearing of the force arrays included; wall time), 1 and 2
+// threads, like BM_MembraneKernelThreads1/2.
+void cableKernelThreads(benchmark::State& state, int threads) {
+  CableNet& net = cachedNet(state.range(0));
+  Model& m = net.model;
+  ThreadedForces forces({net.elastic.get()}, threads, m.nodes.count);
+  for (auto _ : state) {
+    const ForceContext ctx = forces.evaluate(m.nodes, 0.0, 1.0, false);
+    benchmark::DoNotOptimize(ctx.minStableDt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * m.cables.count);
+  state.counters["cables"] = m.cables.count;
+  state.counters["shares"] = forces.shares();
+}
+void BM_CableKernelThreads1(benchmark::State& state) {
+  cableKernelThreads(state, 1);
+}
+void BM_CableKernelThreads2(benchmark::State& state) {
+  cableKernelThreads(state, 2);
+}
+
 // The integrator's node sweep with no effect at all (fixed step): what a step costs besides the effects.
 void BM_NodeSweep(benchmark::State& state) {
   Scene& s = cachedScene(state.range(0), "");
@@ -182,6 +289,23 @@ BENCHMARK(BM_MembraneKernelPerElement)
     ->RangeMultiplier(10)
     ->Range(1000, 1000000)
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CableKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CableKernelPerElement)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CableKernelViscous)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CableKernelViscousPerElement)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CableKernelThreads1)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(BM_CableKernelThreads2)
+    ->RangeMultiplier(10)
+    ->Range(1000, 1000000)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 BENCHMARK(BM_PressureKernel)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_NodeSweep)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Step)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);

@@ -2,16 +2,17 @@
 // ThreadedForces: one force evaluation on several threads (scene key solver.threads; docs/PERFORMANCE.md
 // "Threads").
 //
-// Every effect that splits (Effect::splitItems: the membrane kernel, the pressure loads) is cut into as many
-// contiguous element ranges as there are shares, one share per thread. Share s evaluates its range of every
-// split effect into its own force buffers; share 0 writes straight into the node arrays, which it clears
-// first, and also runs the effects that do not split. The elements are sorted by their lowest node and the
-// nodes follow a Morton curve, so a share's elements touch a narrow band of nodes, which is all its buffers
-// clear and hold. Then, after a barrier, each thread adds the buffers into the node arrays over its own range
-// of nodes: no address is written by two threads and nothing is locked. Only the order of the sums at the
-// nodes where two shares meet, and of the energy sums, differs from a serial evaluation (round-off).
-// Colouring (groups of elements without a shared node) would save the buffers but break the batched kernel's
-// contiguous runs of elements and the locality of the sorted order.
+// Every effect that splits (Effect::splitItems: the membrane kernel, the pressure loads, the cable kernel
+// from kMinParallelItems cables on) is cut into as many contiguous element ranges as there are shares, one
+// share per thread. Share s evaluates its range of every split effect into its own force buffers; share 0
+// writes straight into the node arrays, which it clears first, and also runs the effects that do not split.
+// The elements are sorted by their lowest node and the nodes follow a Morton curve, so a share's elements
+// touch a narrow band of nodes, which is all its buffers clear and hold. Then, after a barrier, each thread
+// adds the buffers into the node arrays over its own range of nodes: no address is written by two threads and
+// nothing is locked. Only the order of the sums at the nodes where two shares meet, and of the energy sums,
+// differs from a serial evaluation (round-off). Colouring (groups of elements without a shared node) would
+// save the buffers but break the batched kernel's contiguous runs of elements and the locality of the sorted
+// order.
 //
 // The two phases are separate calls so that the integrator can put them in ONE parallel region with its node
 // sweep (CentralDifference::step: fork, forces, barrier, gather and sweep of the same nodes, join): each

@@ -75,35 +75,47 @@ inline Vd sqrt(Vd a) {
 #endif
 }
 
-/// Gathers the coordinates of kWidth nodes (xyz-interleaved array x, node indices idx) into lane vectors
-/// out[0..2] = x, y, z of every lane. The AVX version builds the vectors in registers (through memory the
-/// 8-byte writes and the 32-byte read would stall the store forwarding).
-inline void gather3(const double* __restrict x, const int* idx, Vd out[3]) {
+/// Gathers the xyz triples at p[0..kWidth) into lane vectors out[0..2] = x, y, z of every lane. The AVX
+/// version builds the vectors in registers (through memory the 8-byte writes and the 32-byte read would
+/// stall the store forwarding).
+inline void gather3At(const double* const p[kWidth], Vd out[3]) {
 #if defined(__AVX__)
-  const double* p0 = x + 3 * idx[0];
-  const double* p1 = x + 3 * idx[1];
-  const double* p2 = x + 3 * idx[2];
-  const double* p3 = x + 3 * idx[3];
-  const __m256d a = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p0)), _mm_loadu_pd(p2), 1);
-  const __m256d b = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p1)), _mm_loadu_pd(p3), 1);
+  const __m256d a = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p[0])), _mm_loadu_pd(p[2]), 1);
+  const __m256d b = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p[1])), _mm_loadu_pd(p[3]), 1);
   out[0] = Vd(_mm256_unpacklo_pd(a, b));  // x0 x1 x2 x3
   out[1] = Vd(_mm256_unpackhi_pd(a, b));  // y0 y1 y2 y3
-  const __m128d z01 = _mm_loadh_pd(_mm_load_sd(p0 + 2), p1 + 2);
-  const __m128d z23 = _mm_loadh_pd(_mm_load_sd(p2 + 2), p3 + 2);
+  const __m128d z01 = _mm_loadh_pd(_mm_load_sd(p[0] + 2), p[1] + 2);
+  const __m128d z23 = _mm_loadh_pd(_mm_load_sd(p[2] + 2), p[3] + 2);
   out[2] = Vd(_mm256_insertf128_pd(_mm256_castpd128_pd256(z01), z23, 1));
 #else
   // Through an array: GCC 12 takes lane-by-lane writes into a vector for reads of an uninitialised one.
   for (int i = 0; i < 3; ++i) {
     double t[kWidth];
-    for (int l = 0; l < kWidth; ++l) t[l] = x[3 * idx[l] + i];
+    for (int l = 0; l < kWidth; ++l) t[l] = p[l][i];
     out[i] = load(t);
   }
 #endif
 }
 
-/// Adds lane l of in[0..2] (x, y, z) to node idx[l] of the xyz-interleaved array f, lane after lane (lanes
-/// may name the same node).
-inline void scatterAdd3(double* __restrict f, const int* idx, const Vd in[3]) {
+/// Gathers the coordinates of kWidth nodes (xyz-interleaved array x, node indices idx) into lane vectors
+/// out[0..2] = x, y, z of every lane.
+inline void gather3(const double* __restrict x, const int* idx, Vd out[3]) {
+  const double* p[kWidth];
+  for (int l = 0; l < kWidth; ++l) p[l] = x + 3 * idx[l];
+  gather3At(p, out);
+}
+
+/// The same with the nodes given by their offsets in x (3 × node index, laid out once by the caller: no
+/// index arithmetic per lane).
+inline void gather3Offsets(const double* __restrict x, const int* offset, Vd out[3]) {
+  const double* p[kWidth];
+  for (int l = 0; l < kWidth; ++l) p[l] = x + offset[l];
+  gather3At(p, out);
+}
+
+/// Adds lane l of in[0..2] (x, y, z) to the xyz triple at q[l], lane after lane (lanes may name the same
+/// node).
+inline void scatterAdd3At(double* const q[kWidth], const Vd in[3]) {
 #if defined(__AVX__)
   const __m256d a = _mm256_unpacklo_pd(__m256d(in[0]), __m256d(in[1]));  // x0 y0 x2 y2
   const __m256d b = _mm256_unpackhi_pd(__m256d(in[0]), __m256d(in[1]));  // x1 y1 x3 y3
@@ -113,14 +125,28 @@ inline void scatterAdd3(double* __restrict f, const int* idx, const Vd in[3]) {
   const double z[4] = {_mm_cvtsd_f64(zlo), _mm_cvtsd_f64(_mm_unpackhi_pd(zlo, zlo)), _mm_cvtsd_f64(zhi),
                        _mm_cvtsd_f64(_mm_unpackhi_pd(zhi, zhi))};
   for (int l = 0; l < 4; ++l) {
-    double* q = f + 3 * idx[l];
-    _mm_storeu_pd(q, _mm_add_pd(_mm_loadu_pd(q), xy[l]));
-    q[2] += z[l];
+    _mm_storeu_pd(q[l], _mm_add_pd(_mm_loadu_pd(q[l]), xy[l]));
+    q[l][2] += z[l];
   }
 #else
   for (int l = 0; l < kWidth; ++l)
-    for (int i = 0; i < 3; ++i) f[3 * idx[l] + i] += in[i][l];
+    for (int i = 0; i < 3; ++i) q[l][i] += in[i][l];
 #endif
+}
+
+/// Adds lane l of in[0..2] (x, y, z) to node idx[l] of the xyz-interleaved array f, lane after lane (lanes
+/// may name the same node).
+inline void scatterAdd3(double* __restrict f, const int* idx, const Vd in[3]) {
+  double* q[kWidth];
+  for (int l = 0; l < kWidth; ++l) q[l] = f + 3 * idx[l];
+  scatterAdd3At(q, in);
+}
+
+/// The same with the nodes given by their offsets in f (3 × node index).
+inline void scatterAdd3Offsets(double* __restrict f, const int* offset, const Vd in[3]) {
+  double* q[kWidth];
+  for (int l = 0; l < kWidth; ++l) q[l] = f + offset[l];
+  scatterAdd3At(q, in);
 }
 
 /// Loads kWidth records of n doubles each (record l at p + n l) as n lane vectors: out[j][l] = p[n l + j].

@@ -1,6 +1,7 @@
-// Threads (scene key solver.threads): the threaded force evaluation (membrane kernel, pressure loads, the
-// effects that do not split) and node sweep give the serial results to round-off (only the order of the sums
-// at the nodes and of the energy sums differs), and the key is checked like every other scene key.
+// Threads (scene key solver.threads): the threaded force evaluation (membrane kernel, cable kernel, pressure
+// loads, the effects that do not split) and node sweep give the serial results to round-off (only the order
+// of the sums at the nodes and of the energy sums differs), and the key is checked like every other scene
+// key.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -16,9 +17,11 @@
 #include "structure/effects/PressureDistribution.hpp"
 #include "structure/effects/ThreadedForces.hpp"
 #include "structure/effects/Threads.hpp"
+#include "structure/elements/CableForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/scene/Generators.hpp"
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::structure;
@@ -156,6 +159,117 @@ TEST(Threads, PressureForcesEqualSerial) {
       const Evaluation par = evaluateAll(m, {e}, threads);
       ASSERT_EQ(par.shares, threads);
       EXPECT_LE(maxRelDiff(par.fext, serial.fext), 1e-12) << e->name() << ", " << threads << " threads";
+    }
+  }
+}
+
+namespace {
+
+// A square net of n x n nodes with a cable along every grid segment (2 n (n − 1) cables), stretched by
+// 0.3 % with ripples (about 10 % of the cables slack), with velocities; with sheetDivisions > 0 also a
+// membrane sheet of 4 d² triangles in the same model (its own nodes, rippled the same way), so that two
+// split effects share the threads.
+Model cableNet(int n, int sheetDivisions = 0) {
+  std::vector<MeshInput> meshes;
+  MeshInput net;
+  net.mesh.name = "net";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) net.mesh.points.push_back({double(i) / (n - 1), double(j) / (n - 1), 0.0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (i + 1 < n) net.mesh.lines.push_back({j * n + i, j * n + i + 1});
+      if (j + 1 < n) net.mesh.lines.push_back({j * n + i, (j + 1) * n + i});
+    }
+  net.cableMaterial = 0;
+  meshes.push_back(net);
+  if (sheetDivisions > 0) {
+    RectangleParams p;
+    p.size = {1.0, 1.0};
+    p.divisions = {sheetDivisions, sheetDivisions};
+    p.center = {0.5, 0.5, 2.0};
+    p.pattern = "cross";
+    MeshInput sheet;
+    sheet.mesh = rectangle(p, "sheet");
+    sheet.membraneMaterial = 0;
+    meshes.push_back(sheet);
+  }
+  Model m = buildModel(meshes, {MembraneMaterial{"film", 1.0e9, 0.3, 1.0e-3, 1000, true}},
+                       {CableMaterial{"line", 7.0e10, 1.26e-5, 1440}});
+  for (int i = 0; i < m.nodes.count; ++i) {
+    const double X = m.nodes.X[3 * i], Y = m.nodes.X[3 * i + 1], Z = m.nodes.X[3 * i + 2];
+    m.nodes.x[3 * i] = 1.003 * X + 8e-5 * std::sin(50 * X) + 1e-4 * std::sin(40 * Y);
+    m.nodes.x[3 * i + 1] = 1.003 * Y + 6e-5 * std::sin(50 * Y);
+    m.nodes.x[3 * i + 2] = Z + 1e-3 * std::sin(30 * X) * std::sin(20 * Y);
+    for (int k = 0; k < 3; ++k) m.nodes.v[3 * i + k] = 0.1 * std::sin(13.0 * i + 5.0 * k);
+  }
+  return m;
+}
+
+// Grid side of the smallest net with kMinParallelItems cables.
+int netAboveThreshold() {
+  int n = 2;
+  while (2 * n * (n - 1) < kMinParallelItems) ++n;
+  return n;
+}
+
+}  // namespace
+
+// The cable kernel splits like the membrane kernel once it has kMinParallelItems cables: forces, strain
+// energy and stable step on 2, 3 and 5 shares as serially, with and without viscosity, batched and per
+// cable; below the threshold it does not split (and alone stays serial).
+TEST(Threads, CableForcesEqualSerial) {
+  if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
+  const Model m = cableNet(netAboveThreshold());
+  ASSERT_GE(m.cables.count, kMinParallelItems);
+  std::vector<double> T;
+  cableTensions(m.cables, m.nodes.x.data(), T);
+  const long slack = std::count(T.begin(), T.end(), 0.0);
+  ASSERT_GT(slack, m.cables.count / 20);  // a mix of slack and taut cables
+  ASSERT_LT(slack, m.cables.count / 2);
+  for (const ElementDamping& d : {ElementDamping{}, ElementDamping{2.0e-6, 0.06}})
+    for (CableKernel kernel : {CableKernel::Batched, CableKernel::PerElement}) {
+      const CableForces cf(m.cables, d, kernel);
+      ASSERT_EQ(cf.splitItems(), m.cables.count);
+      const Evaluation serial = evaluateAll(m, {&cf}, 1);
+      ASSERT_LE(serial.shares, 1);  // serial (no shares)
+      ASSERT_GT(serial.energy, 0.0);
+      for (int threads : {2, 3, 5}) {
+        const std::string what = std::to_string(threads) + " threads" + (d.enabled() ? ", viscous" : "") +
+                                 (kernel == CableKernel::Batched ? "" : ", per cable");
+        const Evaluation par = evaluateAll(m, {&cf}, threads);
+        ASSERT_EQ(par.shares, threads) << what;  // really split
+        EXPECT_LE(maxRelDiff(par.fint, serial.fint), 1e-12) << what;
+        EXPECT_LE(std::abs(par.energy - serial.energy), 1e-12 * serial.energy) << what;
+        EXPECT_EQ(par.dt, serial.dt) << what;  // a minimum: no rounding
+      }
+    }
+  const Model small = cableNet(netAboveThreshold() - 1);
+  ASSERT_LT(small.cables.count, kMinParallelItems);
+  const CableForces cf(small.cables, {});
+  EXPECT_EQ(cf.splitItems(), 0);
+  EXPECT_LE(evaluateAll(small, {&cf}, 2).shares, 1);  // stays serial
+}
+
+// Cables and membranes both split in one evaluation (their shares' node bands differ: the net's nodes and
+// the sheet's); a small cable set beside a large membrane does not split and runs whole on the first share.
+TEST(Threads, CablesAndMembranesEqualSerial) {
+  if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
+  for (int netSide : {netAboveThreshold(), 12}) {
+    const Model m = cableNet(netSide, aboveThreshold());
+    ASSERT_GE(m.membranes.count, kMinParallelItems);
+    const ElementDamping d{2.0e-6, 0.06};
+    const CableForces cf(m.cables, d);
+    const MembraneForces mf(m.membranes, d);
+    EXPECT_EQ(cf.splitItems() > 0, m.cables.count >= kMinParallelItems);
+    const Evaluation serial = evaluateAll(m, {&mf, &cf}, 1);
+    for (int threads : {2, 3}) {
+      const std::string what =
+          std::to_string(m.cables.count) + " cables, " + std::to_string(threads) + " threads";
+      const Evaluation par = evaluateAll(m, {&mf, &cf}, threads);
+      ASSERT_EQ(par.shares, threads) << what;
+      EXPECT_LE(maxRelDiff(par.fint, serial.fint), 1e-12) << what;
+      EXPECT_LE(std::abs(par.energy - serial.energy), 1e-12 * serial.energy) << what;
+      EXPECT_EQ(par.dt, serial.dt) << what;
     }
   }
 }

@@ -65,10 +65,16 @@ def main():
     _, scratch = run(fsi, d("q70"), "--set", q)
     _, cont = run(fsi, d("q70-from-61"), "--set", q, "--start-from", os.path.join(d("base"), "results.h5"))
     if scratch and cont:
-        for k in ("enclosed_volume", "line_tension_max", "anchor_force_x", "skin_stress_max"):
-            check(close(cont["probes"][k], scratch["probes"][k], 1e-5),
+        # The largest skin stress sits in one element of the trailing edge's element-scale folds (docs/RAMAIR.md),
+        # where a membrane without bending has almost no stiffness across the fold: two relaxations that both
+        # stop within the tolerance's residual (5e-8 of the load) can leave that one element's stress 5e-5
+        # apart (measured 4.9e-5 since the batched cable kernel changed the round-off the relaxation amplifies;
+        # 1e-5 before) while the global quantities agree to 1e-6-1e-5. Hence 1e-4 for it alone.
+        for k, tol in (("enclosed_volume", 1e-5), ("line_tension_max", 1e-5), ("anchor_force_x", 1e-5),
+                       ("skin_stress_max", 1e-4)):
+            check(close(cont["probes"][k], scratch["probes"][k], tol),
                   f"70 Pa from the 61 Pa state: {k} {cont['probes'][k]:.7g} vs {scratch['probes'][k]:.7g} from the "
-                  "design shape (1e-5)")
+                  f"design shape ({tol:g})")
         check(cont["probes"]["equilibrium"] < 1e-6, "global equilibrium < 1e-6")
         check(cont["stats"]["iterations"] < scratch["stats"]["iterations"],
               f"fewer iterations: {cont['stats']['iterations']} against {scratch['stats']['iterations']}")

@@ -19,4 +19,18 @@ bool threadsAvailable();
 /// break even at about 6 500–8 000 triangles. One constant for every split effect: they run in one region.
 constexpr int kMinParallelItems = 8000;
 
+/// While alive, every parallel region runs on one thread (OpenMP's max-active-levels set to 0), which then
+/// takes all the shares one after the other, as when the runtime gives fewer threads than asked. Tests use
+/// it to check that a threaded result does not depend on the scheduling. Does nothing without OpenMP.
+class OneThreadScope {
+ public:
+  OneThreadScope();
+  ~OneThreadScope();
+  OneThreadScope(const OneThreadScope&) = delete;
+  OneThreadScope& operator=(const OneThreadScope&) = delete;
+
+ private:
+  int saved_ = 0;
+};
+
 }  // namespace fsi::structure

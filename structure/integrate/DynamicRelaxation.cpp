@@ -5,6 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#ifdef FSI_HAVE_OPENMP
+#include <omp.h>
+#endif
 
 namespace fsi::structure {
 
@@ -30,10 +35,225 @@ DynamicRelaxation::DynamicRelaxation(Model& model, std::vector<const Effect*> ef
   constraints_.applyTo(model_.nodes);
   free_.resize(3 * model_.nodes.count);
   for (std::size_t d = 0; d < free_.size(); ++d) free_[d] = model_.nodes.invMassDof[d] != 0.0 ? 1.0 : 0.0;
+  // The node loops follow the forces' threading; a tie group's sums span the ranges, so ties keep them
+  // serial.
+  threadedSweeps_ = !forces_.serial() && constraints_.ties.empty();
+  parts_.resize(threadedSweeps_ ? std::size_t(forces_.shares()) : 1);
 }
 
 void DynamicRelaxation::forces(double loadFactor) {
   strain_ = forces_.evaluate(model_.nodes, s_.loadTime, loadFactor, true).strainEnergy;
+}
+
+void DynamicRelaxation::NodeSums::add(const NodeSums& o) {
+  res = std::max(res, o.res);
+  reac = std::max(reac, o.reac);
+  fmax = std::max(fmax, o.fmax);
+  dxNext = std::max(dxNext, o.dxNext);
+  ke += o.ke, all += o.all, keNew += o.keNew, num += o.num, den += o.den;
+  massIncreases += o.massIncreases;
+}
+
+int DynamicRelaxation::sweepBegin(int s) const {
+  return threadedSweeps_ ? forces_.nodeBegin(s) : 0;
+}
+
+int DynamicRelaxation::sweepEnd(int s) const {
+  return threadedSweeps_ ? forces_.nodeEnd(s) : model_.nodes.count;
+}
+
+void DynamicRelaxation::before(int begin, int end, const Sweep& sw, NodeSums& out) {
+  Nodes& N = model_.nodes;
+  double* __restrict x = N.x.data();
+  double* __restrict v = N.v.data();
+  if (sw.before == Sweep::Before::Backstep) {
+    for (int d = 3 * begin; d < 3 * end; ++d) {
+      x[d] -= 0.5 * v[d];
+      v[d] = 0.0;
+    }
+    return;
+  }
+  const double* __restrict fi = N.fint.data();
+  const double* __restrict fe = N.fext.data();
+  const double* __restrict m = mass_.data();
+  const double* __restrict fr = free_.data();
+  double* __restrict Rp = Rprev_.data();
+  const double cv = sw.cv, cr = sw.cr;
+  for (int d = 3 * begin; d < 3 * end; ++d) {
+    const double R = fe[d] - fi[d];
+    Rp[d] = R;
+    v[d] = (cv * v[d] + cr * R / m[d / 3]) * fr[d];
+    x[d] += v[d];
+  }
+  for (const PlaneSlider& sl : constraints_.sliders)
+    if (sl.node >= begin && sl.node < end) sl.project(&v[3 * sl.node], &x[3 * sl.node], 1.0);
+  double dx = 0;
+  for (int d = 3 * begin; d < 3 * end; ++d) dx = std::max(dx, std::abs(v[d]));
+  out.dxNext = dx;
+}
+
+void DynamicRelaxation::after(int begin, int end, const Sweep& sw, double dxMax, NodeSums& out) {
+  Nodes& N = model_.nodes;
+  const double* __restrict x = N.x.data();
+  const double* __restrict v = N.v.data();
+  const double* __restrict X = N.X.data();
+  const double* __restrict fi = N.fint.data();
+  const double* __restrict fe = N.fext.data();
+  const double* __restrict fr = free_.data();
+  double* __restrict m = mass_.data();
+  double* __restrict Rp = Rprev_.data();
+  unsigned char* __restrict strikes = strikes_.data();
+  const bool kinetic = s_.damping == RelaxationSettings::Damping::Kinetic;
+  const bool tied = !constraints_.ties.empty();
+  const double h = sw.h;
+  double res = 0, reac = 0, fmax = 0, ke = 0, all = 0, keNew = 0, num = 0, den = 0, dxNext = 0;
+  int raised = 0;
+  // Apparent-frequency test (Underwood) and, for viscous damping, the Rayleigh-quotient ω0² of node i, after
+  // an update: may raise m[i], which the norms and the trial of the same node then use.
+  auto underwood = [&](int i) {
+    double dR2 = 0, dx2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int d = 3 * i + k;
+      if (fr[d] == 0.0) continue;
+      const double dR = (fe[d] - fi[d]) - Rp[d];
+      dR2 += dR * dR;
+      dx2 += v[d] * v[d];
+      if (!kinetic && std::abs(v[d]) > 1e-12 * dxMax) {
+        const double u = x[d] - X[d];
+        num += u * u * (-dR / v[d]);
+        den += u * u * m[i];
+      }
+    }
+    if (s_.autoMass && dx2 > 1e-12 * dxMax * dxMax) {
+      const double ratio = std::sqrt(dR2 / dx2) / (4.0 * m[i]);
+      strikes[i] = ratio > 1.0 ? static_cast<unsigned char>(std::min(strikes[i] + 1, 255)) : 0;
+      if (strikes[i] >= 3) {
+        m[i] *= 1.2 * ratio;
+        strikes[i] = 0;
+        ++raised;
+      }
+    }
+  };
+  // Static residual on free dofs, reactions on constrained ones (R: the residual, tie forces left out).
+  // std::max drops a NaN, so the sum `all` carries any non-finite residual to the divergence test.
+  auto norms = [&](int i, const double* R) {
+    for (int k = 0; k < 3; ++k) {
+      const int d = 3 * i + k;
+      const double Rd = R ? R[d] : fe[d] - fi[d];
+      all += Rd;
+      fmax = std::max(fmax, std::abs(fe[d]));
+      if (fr[d] != 0.0) {
+        res = std::max(res, std::abs(Rd));
+        ke += 0.5 * m[i] * v[d] * v[d];
+      } else {
+        reac = std::max(reac, std::abs(Rd));
+      }
+    }
+  };
+  if (!tied) {
+    double* __restrict vn = vNext_.data();
+    double* __restrict xn = xNext_.data();
+    // One pass: every loop of the iteration over these nodes.
+    for (int i = begin; i < end; ++i) {
+      if (sw.underwood) underwood(i);
+      norms(i, nullptr);
+      if (sw.trial)
+        for (int k = 0; k < 3; ++k) {
+          const int d = 3 * i + k;
+          const double R = fe[d] - fi[d];
+          const double vNew = (v[d] + h * R / m[i]) * fr[d];
+          keNew += 0.5 * m[i] * vNew * vNew;
+          if (sw.speculate) {
+            Rp[d] = R;
+            vn[d] = vNew;
+            xn[d] = x[d] + vNew;
+            dxNext = std::max(dxNext, std::abs(vNew));
+          }
+        }
+    }
+    if (sw.speculate && !constraints_.sliders.empty()) {
+      bool moved = false;
+      for (const PlaneSlider& sl : constraints_.sliders)
+        if (sl.node >= begin && sl.node < end)
+          sl.project(&vn[3 * sl.node], &xn[3 * sl.node], 1.0), moved = true;
+      if (moved) {
+        dxNext = 0;
+        for (int d = 3 * begin; d < 3 * end; ++d) dxNext = std::max(dxNext, std::abs(vn[d]));
+      }
+    }
+  } else {
+    // Tie groups (serial, all nodes): the norms see each tied node's share of its group's residual, the trial
+    // the tied motion.
+    if (sw.underwood)
+      for (int i = begin; i < end; ++i) underwood(i);
+    sharedResidual();
+    for (int i = begin; i < end; ++i) norms(i, resid_.data());
+    if (sw.trial) {
+      const int nd = 3 * N.count;
+      vTrial_.resize(std::size_t(nd));
+      for (int d = 0; d < nd; ++d) vTrial_[d] = (v[d] + h * (fe[d] - fi[d]) / m[d / 3]) * fr[d];
+      constraints_.ties.project(m, vTrial_.data(), nullptr, 0.0);
+      for (int d = 0; d < nd; ++d) keNew += 0.5 * m[d / 3] * vTrial_[d] * vTrial_[d];
+    }
+  }
+  out.res = res, out.reac = reac, out.fmax = fmax, out.ke = ke, out.all = all, out.keNew = keNew;
+  out.num = num, out.den = den, out.dxNext = dxNext, out.massIncreases = raised;
+}
+
+DynamicRelaxation::NodeSums DynamicRelaxation::evaluate(double loadFactor, const Sweep& sw, bool withForces) {
+  Nodes& N = model_.nodes;
+  const int shares = int(parts_.size());
+  const bool update = sw.before == Sweep::Before::Update;
+  if (!withForces) {
+    for (int s = 0; s < shares; ++s) after(sweepBegin(s), sweepEnd(s), sw, dxMax_, parts_[std::size_t(s)]);
+  } else if (!threadedSweeps_) {
+    double dxMax = dxMax_;
+    if (sw.before != Sweep::Before::None) {
+      before(0, N.count, sw, parts_[0]);
+      dxMax = parts_[0].dxNext;
+      if (update && !constraints_.ties.empty()) {
+        // A tie group moves with its summed (fictitious) mass and residual: the mass-weighted mean of its
+        // members' updates.
+        constraints_.ties.project(mass_.data(), N.v.data(), N.x.data(), 1.0);
+        dxMax = 0;
+        for (double vd : N.v) dxMax = std::max(dxMax, std::abs(vd));
+      }
+    }
+    forces(loadFactor);
+    after(0, N.count, sw, dxMax, parts_[0]);
+  } else {
+#ifdef FSI_HAVE_OPENMP
+    const ForceContext base = forceContextFor(N, s_.loadTime, loadFactor, true);
+#pragma omp parallel num_threads(shares)
+    {
+      // As CentralDifference::forcesAndSweep: a thread takes several shares if the runtime gives fewer
+      // threads than asked. The moves before the forces need a barrier (the shares' elements read the
+      // neighbours' nodes); the gather and the node loops after them see the same nodes, so none there.
+      const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+      double dxMax = dxMax_;
+      if (sw.before != Sweep::Before::None) {
+        for (int s = t; s < shares; s += nt) before(sweepBegin(s), sweepEnd(s), sw, parts_[std::size_t(s)]);
+#pragma omp barrier
+        if (update) {  // max |v| over all nodes (exact in any order)
+          dxMax = 0;
+          for (const NodeSums& p : parts_) dxMax = std::max(dxMax, p.dxNext);
+        }
+      }
+      for (int s = t; s < shares; s += nt) forces_.evaluateShare(s, base);
+#pragma omp barrier
+      for (int s = t; s < shares; s += nt) {
+        forces_.gather(s, base.fint, base.fext);
+        after(sweepBegin(s), sweepEnd(s), sw, dxMax, parts_[std::size_t(s)]);
+      }
+    }
+#endif
+    strain_ = forces_.strainEnergy();
+  }
+  // The ranges' sums in range order: the result does not depend on the scheduling.
+  NodeSums total = parts_[0];
+  for (std::size_t s = 1; s < parts_.size(); ++s) total.add(parts_[s]);
+  if (sw.speculate) dxMax_ = total.dxNext;
+  return total;
 }
 
 RelaxationResult DynamicRelaxation::run(const std::function<void(int, const RelaxationResult&)>& onIncrement,
@@ -43,10 +263,14 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
   RelaxationResult r;
   r.lambda = s_.lambda > 0 ? s_.lambda : defaultLambda(s_);
   const bool kinetic = s_.damping == RelaxationSettings::Damping::Kinetic;
-  std::vector<double> Rprev(nd, 0.0);
+  // Kinetic damping without tie groups computes each update with its trial (speculate): the update is then
+  // a swap of arrays, and an iteration one pass over the nodes.
+  const bool speculate = kinetic && constraints_.ties.empty();
+  Rprev_.assign(std::size_t(nd), 0.0);
+  if (speculate) vNext_.assign(std::size_t(nd), 0.0), xNext_.assign(std::size_t(nd), 0.0);
   // Consecutive failures of the apparent-frequency test per node: a neighbour's large move can fail it once,
   // a node that is really too light fails it every iteration (its error grows like a Nyquist mode).
-  std::vector<unsigned char> strikes(N.count, 0);
+  strikes_.assign(std::size_t(N.count), 0);
   std::fill(N.v.begin(), N.v.end(), 0.0);
 
   double lambda = r.lambda;
@@ -68,30 +292,17 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
       for (double m : mass_) mmax = std::max(mmax, m);
       for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
       std::fill(N.v.begin(), N.v.end(), 0.0);
-      forces(lf);
-      bool fresh = true;  // next velocity update is a half step (start or restart)
+      // After a start or a reset the next velocity update is a half step (fresh).
+      Sweep start;
+      start.trial = kinetic;
+      start.h = 0.5;
+      start.speculate = speculate;
+      NodeSums sums = evaluate(lf, start);
+      bool fresh = true;
       double kePrev = 0, c = 0, res0 = -1;
       while (true) {
-        // Static residual on free dofs, reactions on constrained ones. std::max drops a NaN, so a separate
-        // sum carries any non-finite residual to the divergence test.
-        // A tied node's residual is its share of its group's (the tie forces are no residual).
-        const bool tied = !constraints_.ties.empty();
-        if (tied) sharedResidual();
-        double res = 0, reac = 0, fmax = 0, ke = 0, all = 0;
-        for (int i = 0; i < N.count; ++i)
-          for (int k = 0; k < 3; ++k) {
-            const int d = 3 * i + k;
-            const double R = tied ? resid_[d] : N.fext[d] - N.fint[d];
-            all += R;
-            fmax = std::max(fmax, std::abs(N.fext[d]));
-            if (free_[d] != 0.0) {
-              res = std::max(res, std::abs(R));
-              ke += 0.5 * mass_[i] * N.v[d] * N.v[d];
-            } else {
-              reac = std::max(reac, std::abs(R));
-            }
-          }
-        const bool finite = std::isfinite(all) && std::isfinite(strain_) && std::isfinite(ke);
+        const double res = sums.res, reac = sums.reac, fmax = sums.fmax, ke = sums.ke;
+        const bool finite = std::isfinite(sums.all) && std::isfinite(strain_) && std::isfinite(ke);
         const double scale = reac > 0 ? reac : (fmax > 0 ? fmax : 1.0);
         r.residual = finite ? res : std::numeric_limits<double>::quiet_NaN();
         r.residualRatio = r.residual / scale;
@@ -106,7 +317,7 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
             ++r.restarts;
             N.x = xStart;
             std::fill(N.v.begin(), N.v.end(), 0.0);
-            std::fill(strikes.begin(), strikes.end(), 0);
+            std::fill(strikes_.begin(), strikes_.end(), 0);
             restart = true;
             break;
           }
@@ -135,83 +346,49 @@ RelaxationResult DynamicRelaxation::run(const std::function<void(int, const Rela
 
         const double h = fresh ? 0.5 : 1.0;
         if (kinetic) {
-          double keNew = 0;
-          if (tied) {
-            // The kinetic energy of the tied motion the update is about to give.
-            vTrial_.resize(std::size_t(nd));
-            for (int d = 0; d < nd; ++d)
-              vTrial_[d] = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
-            constraints_.ties.project(mass_.data(), vTrial_.data(), nullptr, 0.0);
-            for (int d = 0; d < nd; ++d) keNew += 0.5 * mass_[d / 3] * vTrial_[d] * vTrial_[d];
-          } else {
-            for (int d = 0; d < nd; ++d) {
-              const double vn = (N.v[d] + h * (N.fext[d] - N.fint[d]) / mass_[d / 3]) * free_[d];
-              keNew += 0.5 * mass_[d / 3] * vn * vn;
-            }
-          }
-          if (!fresh && keNew < kePrev) {
+          // sums.keNew: the kinetic energy the update is about to give (of the tied motion with ties).
+          if (!fresh && sums.keNew < kePrev) {
             // Kinetic-energy peak passed: zero the velocities (after stepping back to the peak).
             ++r.kineticResets;
-            if (s_.backstep)
-              for (int d = 0; d < nd; ++d) N.x[d] -= 0.5 * N.v[d];
-            std::fill(N.v.begin(), N.v.end(), 0.0);
+            Sweep again = start;
+            const bool refresh = s_.mass == FictitiousMassRule::StressBound || s_.updateMasses;
+            if (s_.backstep && !refresh) {
+              again.before = Sweep::Before::Backstep;  // in the evaluation's parallel region
+            } else {
+              if (s_.backstep)
+                for (int d = 0; d < nd; ++d) N.x[d] -= 0.5 * N.v[d];
+              std::fill(N.v.begin(), N.v.end(), 0.0);
+              if (refresh) {
+                mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
+                for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
+              }
+            }
+            sums = evaluate(lf, again, s_.backstep);
             fresh = true;
             kePrev = 0;
-            if (s_.mass == FictitiousMassRule::StressBound || s_.updateMasses) {
-              mass_ = fictitiousMasses(model_, N.x.data(), s_.mass, lambda);
-              for (double& m : mass_) m = std::max(m, 1e-9 * mmax);
-            }
-            if (s_.backstep) forces(lf);
             continue;
           }
-          kePrev = keNew;
+          kePrev = sums.keNew;
         }
-        const double cv = kinetic ? 1.0 : (2.0 - c) / (2.0 + c);
-        const double cr = kinetic ? h : (fresh ? 0.5 : 2.0 / (2.0 + c));
-        for (int d = 0; d < nd; ++d) {
-          const double R = N.fext[d] - N.fint[d];
-          Rprev[d] = R;
-          N.v[d] = (cv * N.v[d] + cr * R / mass_[d / 3]) * free_[d];
-          N.x[d] += N.v[d];
+        Sweep next;
+        next.underwood = s_.autoMass || !kinetic;
+        next.trial = kinetic;
+        next.h = 1.0;
+        next.speculate = speculate;
+        if (speculate) {
+          // The update the trial computed (v, x, sliders; R in Rprev_).
+          std::swap(N.v, vNext_);
+          std::swap(N.x, xNext_);
+        } else {
+          next.before = Sweep::Before::Update;
+          next.cv = kinetic ? 1.0 : (2.0 - c) / (2.0 + c);
+          next.cr = kinetic ? h : (fresh ? 0.5 : 2.0 / (2.0 + c));
         }
-        for (const PlaneSlider& sl : constraints_.sliders)
-          sl.project(&N.v[3 * sl.node], &N.x[3 * sl.node], 1.0);
-        // A tie group moves with its summed (fictitious) mass and residual: the mass-weighted mean of its
-        // members' updates.
-        if (tied) constraints_.ties.project(mass_.data(), N.v.data(), N.x.data(), 1.0);
         fresh = false;
-        forces(lf);
-
-        // Apparent-frequency test (Underwood) and, for viscous damping, the Rayleigh-quotient ω0².
-        double dxMax = 0;
-        for (int d = 0; d < nd; ++d) dxMax = std::max(dxMax, std::abs(N.v[d]));
-        double num = 0, den = 0;
-        for (int i = 0; i < N.count; ++i) {
-          double dR2 = 0, dx2 = 0;
-          for (int k = 0; k < 3; ++k) {
-            const int d = 3 * i + k;
-            if (free_[d] == 0.0) continue;
-            const double dR = (N.fext[d] - N.fint[d]) - Rprev[d];
-            dR2 += dR * dR;
-            dx2 += N.v[d] * N.v[d];
-            if (!kinetic && std::abs(N.v[d]) > 1e-12 * dxMax) {
-              const double u = N.x[d] - N.X[d];
-              num += u * u * (-dR / N.v[d]);
-              den += u * u * mass_[i];
-            }
-          }
-          if (s_.autoMass && dx2 > 1e-12 * dxMax * dxMax) {
-            const double ratio = std::sqrt(dR2 / dx2) / (4.0 * mass_[i]);
-            strikes[i] = ratio > 1.0 ? static_cast<unsigned char>(std::min(strikes[i] + 1, 255)) : 0;
-            if (strikes[i] >= 3) {
-              mass_[i] *= 1.2 * ratio;
-              strikes[i] = 0;
-              ++r.massIncreases;
-            }
-          }
-        }
-        if (!kinetic && den > 0) {
-          const double w2 = std::max(0.0, num / den);
+        sums = evaluate(lf, next);
+        r.massIncreases += sums.massIncreases;
+        if (!kinetic && sums.den > 0) {
+          const double w2 = std::max(0.0, sums.num / sums.den);
           c = s_.coefficient == RelaxationSettings::Coefficient::Underwood
                   ? 2.0 * std::sqrt(w2)
                   : std::sqrt(std::max(0.0, 4 * w2 - w2 * w2));

@@ -16,6 +16,14 @@
 // up 10⁴-fold or non-finite) restarts the increment with 1.5x the masses. Both are counted in the result.
 // The iterate with the smallest residual (checked every kBestEvery iterations) is kept for the stop handling:
 // a diverged run saves it as its last good state.
+// Threads (solver.threads, docs/PERFORMANCE.md "Threaded dynamic relaxation"): an iteration is one parallel
+// region, as a central-difference step: the force evaluation's shares (ThreadedForces), a barrier, then each
+// thread gathers the forces of its range of nodes and runs every node loop of the iteration over the same
+// nodes in one pass (frequency test, residual and kinetic-energy norms, the kinetic-energy trial and, for
+// kinetic damping, the update itself into spare arrays that become the state if no reset follows). Norms and
+// energies are summed per range and the ranges added in range order after the join: the result depends on
+// the thread count (round-off) but never on the scheduling. Serial below kMinParallelItems (as the forces)
+// and with tie groups (their group sums are serial passes).
 
 #include <functional>
 #include <string>
@@ -37,7 +45,7 @@ struct RelaxationSettings {
   Damping damping = Damping::Kinetic;
   FictitiousMassRule mass = FictitiousMassRule::Gerschgorin;
   Coefficient coefficient = Coefficient::Underwood;
-  int threads = 1;          ///< threads for the force kernels (the relaxation's own node loops stay serial)
+  int threads = 1;          ///< threads for the force kernels and the node loops (solver.threads)
   double lambda = 0;        ///< mass scale; 0 = the rule's default (defaultLambda)
   bool backstep = true;     ///< kinetic damping: restart from the estimated energy peak
   double tolerance = 1e-3;  ///< ε
@@ -92,6 +100,30 @@ class DynamicRelaxation {
   static constexpr long kBestEvery = 32;
 
  private:
+  /// What an evaluation does around the force evaluation, node by node.
+  struct Sweep {
+    enum class Before { None, Update, Backstep };
+    Before before = Before::None;  ///< Update: v ← (cv·v + cr·R/m), x ← x + v; Backstep: x ← x − ½v, v ← 0
+    double cv = 1, cr = 1;
+    bool underwood = false;  ///< after an update: apparent-frequency test and the Rayleigh-quotient sums
+    bool trial = false;      ///< kinetic damping: E_kin of the next update with coefficient h
+    double h = 1;
+    bool speculate = false;  ///< and that update itself into vNext_, xNext_ (and R into Rprev_)
+  };
+  /// Sums and maxima over a range of nodes (one per thread's share; the ranges are added in order).
+  struct alignas(64) NodeSums {
+    double res = 0, reac = 0, fmax = 0, ke = 0, all = 0, keNew = 0, num = 0, den = 0, dxNext = 0;
+    int massIncreases = 0;
+    void add(const NodeSums& o);
+  };
+  /// `sw.before` on every node, the forces at load factor lf (none if !withForces), then the node loops of
+  /// `sw` at the new state; returns their sums over all nodes.
+  NodeSums evaluate(double loadFactor, const Sweep& sw, bool withForces = true);
+  /// The node work of one range before and after the forces.
+  void before(int begin, int end, const Sweep& sw, NodeSums& out);
+  void after(int begin, int end, const Sweep& sw, double dxMax, NodeSums& out);
+  int sweepBegin(int s) const;
+  int sweepEnd(int s) const;
   void forces(double loadFactor);
   void keepIfBest(long iteration, int increment, double loadFactor, double residualRatio);
   /// Largest-residual node and non-finite residuals at the current state (for a stopped run's report).
@@ -106,6 +138,12 @@ class DynamicRelaxation {
   std::vector<double> mass_;            ///< fictitious mass per node
   std::vector<double> free_;            ///< 1 for a free dof, 0 for a constrained one
   std::vector<double> resid_, vTrial_;  ///< tie groups only: shared residual, trial velocities
+  std::vector<double> Rprev_;           ///< residual before the last update (frequency test)
+  std::vector<double> vNext_, xNext_;   ///< kinetic damping: the next update, computed with the trial
+  std::vector<unsigned char> strikes_;  ///< consecutive failures of the frequency test per node
+  double dxMax_ = 0;                    ///< max |v| of the update in vNext_
+  bool threadedSweeps_ = false;         ///< node loops in the force evaluation's parallel region
+  std::vector<NodeSums> parts_;         ///< one per share of the node loops
   double strain_ = 0;
   StateSnapshot best_;
 };

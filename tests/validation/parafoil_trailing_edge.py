@@ -64,7 +64,12 @@ def main():
     folds = {}
     for spacing in ("cosine", "half_cosine"):
         d = os.path.join(out, spacing)
-        cmd = [fsi, "run", SCENE, "--out", d, "--quiet", "--set", f"meshes.wing.generator.chordwise_spacing={spacing}"]
+        # The scene's stop (relative residual 5e-8) leaves a residual whose sum over the ~1000 nodes is not
+        # bounded by 1e-6 of the load: 1.4e-7 or 1.4e-6 on the half-cosine canopy, depending on the round-off
+        # of the cable kernel that sets the relaxation's path. 2e-8 gives 2.7e-7 (18 % more iterations), so
+        # the global-equilibrium check below tests the static state, not the path.
+        cmd = [fsi, "run", SCENE, "--out", d, "--quiet", "--set", f"meshes.wing.generator.chordwise_spacing={spacing}",
+               "--set", "solver.tolerance=2e-8"]
         p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         print("$ " + " ".join(cmd) + "\n" + p.stdout.strip())
         check(p.returncode == 0, f"{spacing}: exit code {p.returncode}")

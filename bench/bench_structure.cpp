@@ -65,13 +65,8 @@ Scene& cachedScene(long n, const std::string& extra) {
   return *s;
 }
 
-// The scene's membrane effect (batched kernel), or the per-element reference kernel on the same model.
-void membraneKernel(benchmark::State& state, MembraneKernel kernel) {
-  Scene& s = cachedScene(state.range(0), "");
-  Model& m = *s.model;
-  const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
-  // The element forces come first in the scene's list; this sheet has no cables.
-  const Effect* membrane = kernel == MembraneKernel::Batched ? s.effectList().front() : &perElement;
+// One effect's addForces on the model's current state, timed (forces accumulate: the arrays are not cleared).
+void timeForceEffect(benchmark::State& state, Model& m, const Effect& effect, long items, const char* what) {
   ForceContext ctx;
   ctx.x = m.nodes.x.data();
   ctx.v = m.nodes.v.data();
@@ -79,12 +74,22 @@ void membraneKernel(benchmark::State& state, MembraneKernel kernel) {
   ctx.fext = m.nodes.fext.data();
   for (auto _ : state) {
     ctx.minStableDt = 1e300;
-    membrane->addForces(ctx);
+    effect.addForces(ctx);
     benchmark::DoNotOptimize(ctx.minStableDt);
     benchmark::ClobberMemory();
   }
-  state.SetItemsProcessed(state.iterations() * m.membranes.count);
-  state.counters["triangles"] = m.membranes.count;
+  state.SetItemsProcessed(state.iterations() * items);
+  state.counters[what] = static_cast<double>(items);
+}
+
+// The scene's membrane effect (batched kernel), or the per-element reference kernel on the same model.
+void membraneKernel(benchmark::State& state, MembraneKernel kernel) {
+  Scene& s = cachedScene(state.range(0), "");
+  Model& m = *s.model;
+  const MembraneForces perElement(m.membranes, {}, MembraneKernel::PerElement);
+  // The element forces come first in the scene's list; this sheet has no cables.
+  const Effect* membrane = kernel == MembraneKernel::Batched ? s.effectList().front() : &perElement;
+  timeForceEffect(state, m, *membrane, m.membranes.count, "triangles");
 }
 
 void BM_MembraneKernel(benchmark::State& state) {
@@ -187,19 +192,7 @@ void cableKernel(benchmark::State& state, bool viscous, CableKernel kernel = Cab
   const Effect* cable = kernel == CableKernel::Batched
                             ? (viscous ? net.viscous.get() : net.elastic.get())
                             : (viscous ? net.perElementViscous.get() : net.perElement.get());
-  ForceContext ctx;
-  ctx.x = m.nodes.x.data();
-  ctx.v = m.nodes.v.data();
-  ctx.fint = m.nodes.fint.data();
-  ctx.fext = m.nodes.fext.data();
-  for (auto _ : state) {
-    ctx.minStableDt = 1e300;
-    cable->addForces(ctx);
-    benchmark::DoNotOptimize(ctx.minStableDt);
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(state.iterations() * m.cables.count);
-  state.counters["cables"] = m.cables.count;
+  timeForceEffect(state, m, *cable, m.cables.count, "cables");
 }
 void BM_CableKernel(benchmark::State& state) {
   cableKernel(state, false);

@@ -12,4 +12,7 @@ for f in $case_files; do cp "$src/$f" "$work/ramair-kt/"; done
 unset FSI_SHARE_DIR
 # shellcheck disable=SC1091
 . "$build/share/fsi/fsi-env.sh"
+# foamDictionary needs the installation's etc/; mpirun refuses root unless told (containers, CI)
+export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
+if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
 cd "$work/ramair-kt" || exit 1

@@ -17,8 +17,6 @@
 set -uo pipefail
 src=$1 build=$2 work=$3
 . "$(dirname "$0")/ramair_test_case.sh"
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-[ "$(id -u)" = 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 # windows of 8.337 ms: the pull from window 30 to 50
 sed -e 's/^steps .*/steps 70/' -e 's/^rigid_steps .*/rigid_steps 20/' -e 's/^carry_after .*/carry_after 20/' \

@@ -21,8 +21,6 @@
 set -uo pipefail
 src=$1 build=$2 work=$3
 . "$(dirname "$0")/ramair_test_case.sh"
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-[ "$(id -u)" = 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 sed -e 's/^steps .*/steps 6/' -e 's/^rigid_steps .*/rigid_steps 20/' -e 's/^carry_after .*/carry_after 20/' \
   -e 's/^write_interval .*/write_interval 1/' coupled.settings > short.settings

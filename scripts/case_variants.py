@@ -23,4 +23,9 @@ def stop_reason(d):
         where = f" next to ({', '.join(f'{float(v):.2f}' for v in cell.group(1).split())})" if cell else ""
         return f"mesh guard stop in window {hit.group(2)} (t = {float(hit.group(1)):.3f} s){where}"
     hit = re.search(r"FOAM FATAL[^\n]*\n([^\n]*)", text)
-    return f"failed: {hit.group(1).strip()[:80]}" if hit else "failed (see Allrun.out)"
+    if hit:
+        return f"failed: {hit.group(1).strip()[:80]}"
+    if "sigFpe::sigHandler" in text:
+        times = re.findall(r"^Time = ([0-9.e+-]+)", text, re.M)
+        return "floating-point exception in the fluid solve" + (f" (t = {float(times[-1]):.3f} s)" if times else "")
+    return "failed (see Allrun.out)"

@@ -20,6 +20,11 @@ import sys
 CASE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "cases", "structure",
                     "parafoil-kt-inflation")
 RELAX = os.path.join(CASE, "relaxation.yaml")
+# The continuation is compared with the run from the design shape at 1e-5. Both stop somewhere inside the
+# relaxation's tolerance, and the largest skin stress (one element at a trailing-edge fold) moves with where:
+# 4.9e-5 apart at the scene's 5e-8, 1.4e-5 at 2e-8, 2.0e-6 at 1e-8 (measured 2026-11-28). So these runs relax
+# to 1e-8 (about 20 % more iterations).
+TIGHT = ("--set", "solver.tolerance=1e-8")
 failures = []
 
 
@@ -47,11 +52,11 @@ def main():
     os.makedirs(work)
     d = lambda n: os.path.join(work, n)  # noqa: E731
 
-    _, base = run(fsi, d("base"))
+    _, base = run(fsi, d("base"), *TIGHT)
     check(base is not None and base["stop_reason"] == "static", "the 61 Pa inflation is static")
     if base is None:
         return finish()
-    _, again = run(fsi, d("again"), "--start-from", d("base"))
+    _, again = run(fsi, d("again"), *TIGHT, "--start-from", d("base"))
     check(again is not None and again["stats"]["iterations"] == 0,
           f"restarted from its own static state: {again and again['stats']['iterations']} iterations (0)")
     if again:
@@ -62,19 +67,13 @@ def main():
               "the same probes to 1e-12")
 
     q = "effects.pressure.value=70"
-    _, scratch = run(fsi, d("q70"), "--set", q)
-    _, cont = run(fsi, d("q70-from-61"), "--set", q, "--start-from", os.path.join(d("base"), "results.h5"))
+    _, scratch = run(fsi, d("q70"), *TIGHT, "--set", q)
+    _, cont = run(fsi, d("q70-from-61"), *TIGHT, "--set", q, "--start-from", os.path.join(d("base"), "results.h5"))
     if scratch and cont:
-        # The largest skin stress sits in one element of the trailing edge's element-scale folds (docs/RAMAIR.md),
-        # where a membrane without bending has almost no stiffness across the fold: two relaxations that both
-        # stop within the tolerance's residual (5e-8 of the load) can leave that one element's stress 5e-5
-        # apart (measured 4.9e-5 since the batched cable kernel changed the round-off the relaxation amplifies;
-        # 1e-5 before) while the global quantities agree to 1e-6-1e-5. Hence 1e-4 for it alone.
-        for k, tol in (("enclosed_volume", 1e-5), ("line_tension_max", 1e-5), ("anchor_force_x", 1e-5),
-                       ("skin_stress_max", 1e-4)):
-            check(close(cont["probes"][k], scratch["probes"][k], tol),
+        for k in ("enclosed_volume", "line_tension_max", "anchor_force_x", "skin_stress_max"):
+            check(close(cont["probes"][k], scratch["probes"][k], 1e-5),
                   f"70 Pa from the 61 Pa state: {k} {cont['probes'][k]:.7g} vs {scratch['probes'][k]:.7g} from the "
-                  f"design shape ({tol:g})")
+                  "design shape (1e-5)")
         check(cont["probes"]["equilibrium"] < 1e-6, "global equilibrium < 1e-6")
         check(cont["stats"]["iterations"] < scratch["stats"]["iterations"],
               f"fewer iterations: {cont['stats']['iterations']} against {scratch['stats']['iterations']}")

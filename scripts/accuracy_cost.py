@@ -133,7 +133,7 @@ def ramair_section():
     missing = [n for n in ramair_resolutions.VARIANTS if n not in {r["variant"] for r in rows}]
     return [head,
             f"The main job's case (`cases/coupled/ramair-kt`, `coupled.settings`, 2 ranks), the fluid mesh one "
-            f"level finer, and the structure 1.5× finer; the wall time is the whole `Allrun.parallel` (meshing, "
+            f"level finer (everywhere, and off the skin only), and the structure 1.5× finer; the wall time is the whole `Allrun.parallel` (meshing, "
             f"rigid start, coupled windows, reconstruction, checkMesh, plots). Measured by `{d['command']}` on "
             f"{d['machine']}, finished {d['finished']}, commit {d['commit']}."
             + (" Each run follows the main job's schedule to its trim (200 windows from rest, then 400 with the "
@@ -156,7 +156,13 @@ def ramair_reading(rows):
     any refined run gives a resolution error of the coarse answer."""
     lines, usable = [], []
     for r in rows[1:]:
-        if "stopped" in r:
+        if "stopped" in r and "new mesh" in r["stopped"]:  # remeshing that could not keep up
+            lines.append(f"- {r['variant']}: {r['stopped']} after {r['wall_s']:.0f} s: no figures at this "
+                         "resolution. The finer cells next to the skin fold as the canopy moves, and a fresh mesh "
+                         "folds again within a few windows, so remeshing does not carry this run to its trim in a "
+                         "usable time (docs/COUPLING.md \"Remeshing during a run\", docs/RAMAIR.md; `remesh_max` ends "
+                         "such a run by itself).")
+        elif "stopped" in r:
             lines.append(f"- {r['variant']}: {r['stopped']} after {r['wall_s']:.0f} s: no figures at this "
                          "resolution (the mesh guard names the cell; docs/COUPLING.md \"When the run stops\").")
         elif r["balance"] > 0.05:

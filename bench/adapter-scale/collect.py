@@ -3,10 +3,10 @@
 
 Usage: collect.py [RUNS_DIR] [--json OUT.json] [--plot OUT.png]   (RUNS_DIR default /tmp/fsi-adapter-scale)
 
-Reads each RUNS_DIR/N<N>-np<R>/: structure/timing.json (wall, transfer, structure, windows, ranks),
-log.pimpleFoam (the adapter's end-of-run lines: set-up, the transfer's parts, the mesh guard's checks; the
-last ExecutionTime/ClockTime) and uptime.txt (load before and after). All times are the master rank's wall
-times. Per window:
+Reads each RUNS_DIR/N<N>-np<R>[-t<T>]/ (T: the structure's threads, run.sh's 5th argument):
+structure/timing.json (wall, transfer, structure, windows, ranks), log.pimpleFoam (the adapter's end-of-run
+lines: set-up, the transfer's parts, the mesh guard's checks; the last ExecutionTime/ClockTime) and
+uptime.txt (load before and after). All times are the master rank's wall times. Per window:
   fluid      = (wall - set-up - transfer - structure - checkpoints - mesh checks) / windows
                (the solver's own work: pimpleFoam's step and mesh motion, everything not the adapter's)
   master     = structure + load and displacement projections: work only rank 0 does
@@ -43,6 +43,7 @@ def read_run(d):
     f = r"([0-9.eE+-]+)"
     r = {
         "case": os.path.basename(d),
+        "threads": int(re.search(r"-t(\d+)$", d).group(1)) if re.search(r"-t(\d+)$", d) else 1,
         "points": int(number(r"\[fsi\] patch \S+: (\d+) fluid points", text, "patch line", log)),
         "nodes": int(number(r"<- (\d+) structure nodes", text, "patch line", log)),
         "projection": re.search(r"structure nodes, (\w+) L2 projection", text).group(1),
@@ -114,6 +115,8 @@ def main():
     print("|" + "---|" * 14)
     for r in runs:
         over = " (oversubscribed)" if r["ranks"] > 2 else ""
+        if r["threads"] > 1:
+            over += f", structure on {r['threads']} threads"
         print(f"| {r['points']:,} ({r['nodes']:,}) | {r['ranks']}{over} | {r['load_before']:.1f}/{r['load_after']:.1f} "
               f"| {r['window_wall']:.3g} | {r['fluid_per_window']:.3g} | {r['structure_per_window']:.3g} "
               f"| {ms(r['projection_per_window'])} | {ms(r['comm_per_window'])} | {ms(r['face_forces_per_window'])} "
@@ -130,7 +133,7 @@ def main():
         fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
         # colour: the quantity; marker and line: the rank count
         for ranks, mark, line in ((1, "o", "-"), (2, "s", "--"), (4, "^", ":")):
-            sel = [r for r in runs if r["ranks"] == ranks]
+            sel = [r for r in runs if r["ranks"] == ranks and r["threads"] == 1]
             if not sel:
                 continue
             label = f"{ranks} rank(s)" + (" (oversubscribed)" if ranks > 2 else "")

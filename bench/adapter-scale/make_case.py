@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes a coupled scaling case for issue 16: a flat membrane interface of about N fluid points.
 
-Usage: make_case.py N RANKS CASE_DIR [--windows W]
+Usage: make_case.py N RANKS CASE_DIR [--windows W] [--projection P] [--threads T]
 
 The fluid is a thin box x, y in [0, 1], z in [0, 0.1]: n x n x 2 cells with n = round(sqrt(N)) - 1, so the
 floor z = 0 -- the coupled patch `membrane` -- has (n + 1)^2 points; inlet x = 0, outlet x = 1, slip sides
@@ -14,7 +14,8 @@ The structure is the same film as cases/coupled/inflated-patch-3d (E t = 5e4 N/m
 cushion) on a rectangle generator of m x m squares, pattern cross (2 m^2 + 2 m + 1 nodes, 4 m^2 triangles),
 m = round(0.7 n): about as many nodes as the fluid patch has points, and not matching it.
 
-Projection: `auto` unless --projection says otherwise.
+Projection: `auto` unless --projection says otherwise. Threads: the structure's `solver: {threads: T}` on the
+master rank (default 1), which it uses while the fluid waits for it (docs/PERFORMANCE.md "Threads").
 Coupling: staggered (one fluid solve per window), so every window is one gather, one structure window and
 one scatter. RANKS = 1: serial; 2 or 4: system/decomposeParDict splits the patch in 2 (y) or 2 x 2.
 The case's Allrun sources the project's case functions (cases/coupled/case-functions.sh).
@@ -52,12 +53,14 @@ def main():
                     help="the adapter's projection option (default auto: dual above 5000 fluid points, the "
                     "variant docs/PERFORMANCE.md recommends on large interfaces; the adapter's own default is "
                     "consistent)")
+    ap.add_argument("--threads", default="1", help="the structure's OpenMP threads on the master rank (1 .. 64)")
     a = ap.parse_args()
     N = positive_int(a.N, "N", 100, 4_000_000)
     ranks = positive_int(a.RANKS, "RANKS", 1, 4)
     if ranks == 3:
         sys.exit("make_case.py: RANKS must be 1, 2 or 4, got 3")
     windows = positive_int(a.windows, "--windows", 1, 100)
+    threads = positive_int(a.threads, "--threads", 1, 64)
     if os.path.exists(a.CASE_DIR):
         sys.exit(f"make_case.py: {a.CASE_DIR} exists; remove it or choose another folder")
 
@@ -112,6 +115,7 @@ effects:
   pressure: {{triangles: patch, value: 50, function: {{type: smooth_step, duration: 0.2}}}}
   mass_damping: {{alpha: 10}}
 coupling: {{interface: patch}}
+solver: {{threads: {threads}}}
 output:
   fields: [displacement]
 """)
@@ -123,7 +127,7 @@ method simple;
 coeffs {{ n {split}; }}
 """)
     print(f"{case}: {n} x {n} x {LAYERS} cells, {(n + 1) ** 2} fluid points, structure {m} x {m} cross "
-          f"({2 * m * m + 2 * m + 1} nodes, {4 * m * m} triangles), dt {dt:.4g} s, {windows} windows, {ranks} rank(s)")
+          f"({2 * m * m + 2 * m + 1} nodes, {4 * m * m} triangles), dt {dt:.4g} s, {windows} windows, {ranks} rank(s), {threads} structure thread(s)")
 
 
 if __name__ == "__main__":

@@ -42,6 +42,10 @@ RESOLUTIONS = {
     # cell is one chord. Levels as in the feasibility trial (shared notes: 52 k / 235 k cells).
     "coarse": {"surface": (4, 5), "features": 5, "near": 3, "wake": 2},
     "medium": {"surface": (5, 6), "features": 6, "near": 4, "wake": 3},
+    # The medium mesh away from the skin and the coarse one at it: the flow around the wing and its wake
+    # resolved one level finer while the cells the canopy moves stay those of the coarse mesh (the medium
+    # mesh's thinner cells there fold as the canopy moves; docs/RAMAIR.md). The same step as coarse.
+    "wake": {"surface": (4, 5), "features": 5, "near": 4, "wake": 3},
 }
 
 # motion_diffusivity: the displacementLaplacian's diffusivity (OpenFOAM's names)
@@ -121,6 +125,10 @@ SETTINGS = {
                      "coupled yes: when the moved mesh has crushed a cell below this fraction of its volume, the "
                      "run stops cleanly, a new mesh is snapped to the canopy as it is and the run continues on it "
                      "(the adapter's remeshBelow; Allrun does the rest; 0: off)"),
+    "remesh_max": ("int", 50, 1, 10000,
+                   "coupled yes, remesh_below > 0: new meshes at most; when the run asks for one more, Allrun stops "
+                   "with the case as it is (a mesh that keeps folding every few windows would otherwise snap for "
+                   "hours)"),
     "tolerance": ("float", 1e-3, 1e-12, 0.5, "implicit: relative interface-displacement residual of a step"),
     "max_iterations": ("int", 20, 1, 1000, "implicit: iterations per step at most"),
     "subcycles": ("int", 1, 1, 100000, "structural steps per fluid step at least"),

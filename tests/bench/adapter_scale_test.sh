@@ -26,6 +26,10 @@ expect_error "N must be a whole number in [100, 4000000], got 50" 50 1 "$work/x"
 expect_error "RANKS must be a whole number in [1, 4], got 8" 1000 8 "$work/x"
 expect_error "RANKS must be 1, 2 or 4, got 3" 1000 3 "$work/x"
 expect_error "--windows must be a whole number in [1, 100], got 0" 1000 1 "$work/x" --windows 0
+expect_error "--threads must be a whole number in [1, 64], got 0" 1000 1 "$work/x" --threads 0
+# --threads reaches the structure's scene (the solver's threads on the master rank)
+"$gen" 1000 1 "$work/threads" --threads 2 > /dev/null || bad "make_case.py --threads 2 failed"
+grep -qx "solver: {threads: 2}" "$work/threads/structure.yaml" 2>/dev/null || bad "--threads 2: no 'solver: {threads: 2}' in structure.yaml"
 mkdir -p "$work/exists"
 expect_error "exists; remove it or choose another folder" 1000 1 "$work/exists"
 

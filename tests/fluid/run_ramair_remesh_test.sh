@@ -16,6 +16,9 @@
 #                mesh's case stays in stageN/ with a .foam file.
 #   reported     remesh's lift and drag against plain's at the end (the snapped and mapped flow's transient,
 #                docs/COUPLING.md).
+#   capped       `capped` is remesh with remesh_max 1: Allrun stops when the run asks for a second new mesh,
+#                exit non-zero, a message naming remesh_max and the time, the case kept as the run left it
+#                (the request, the fields at that time on both ranks, stage1/ and no stage2/).
 # Exit 77 (ctest: skipped) without Debian's OpenFOAM binaries.
 # Usage: run_ramair_remesh_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -uo pipefail
@@ -25,11 +28,21 @@ src=$1 build=$2 work=$3
 sed -e 's/^steps .*/steps 6/' -e 's/^rigid_steps .*/rigid_steps 20/' -e 's/^carry_after .*/carry_after 20/' \
   -e 's/^write_interval .*/write_interval 1/' coupled.settings > short.settings
 cd .. || exit 1
-cp -r ramair-kt plain && cp -r ramair-kt remesh || fail "copying the case"
+cp -r ramair-kt plain && cp -r ramair-kt remesh && cp -r ramair-kt capped || fail "copying the case"
 echo "remesh_below 0.95" >> remesh/short.settings
+printf 'remesh_below 0.95\nremesh_max 1\n' >> capped/short.settings
 (cd plain && ./Allrun.parallel -settings short.settings > ../plain.log 2>&1) || { tail -20 plain.log; fail "plain: Allrun failed"; }
 (cd remesh && ./Allrun.parallel -settings short.settings > ../remesh.log 2>&1) || { tail -20 remesh.log; fail "remesh: Allrun failed"; }
 grep "New mesh" remesh.log
+
+(cd capped && ./Allrun.parallel -settings short.settings > ../capped.log 2>&1) && fail "capped: Allrun went on past remesh_max 1"
+grep -q "remesh_max 1 reached: 1 new meshes since t = " capped.log || { tail -5 capped.log; fail "capped: no remesh_max message"; }
+Tc=$(sed -n 's/^time //p' capped/structure/remesh/request 2>/dev/null)
+[ -n "$Tc" ] || fail "capped: the second request is gone"
+grep -q "asks for another at t = $Tc s" capped.log || fail "capped: the message does not name t = $Tc"
+for r in 0 1; do [ -f "capped/processor$r/$Tc/U" ] || fail "capped: no fields at $Tc on rank $r"; done
+[ -d capped/stage1 ] && [ ! -d capped/stage2 ] || fail "capped: expected stage1/ and no stage2/"
+echo "capped: stopped at t = $Tc as asked"
 
 # same-mesh: remesh's first stop, continued on the old mesh as moved (stage1/T/polyMesh/points as the new
 # undeformed points), its fields copied (U p k omega nut and the fluxes phi, Uf), the displacement zero.

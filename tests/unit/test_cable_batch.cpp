@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "ForceDifference.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/model/Model.hpp"
 
@@ -90,12 +91,7 @@ Result evaluate(const Model& m, const ElementDamping& d, CableKernel kernel,
 // Largest force difference relative to the largest reference force (at a node shared by several cables the
 // sums are added in another order, so the node's own small resultant is no scale).
 double forceError(const Result& a, const Result& ref) {
-  double diff = 0, scale = 0;
-  for (std::size_t i = 0; i < ref.f.size(); ++i) {
-    diff = std::max(diff, std::abs(a.f[i] - ref.f[i]));
-    scale = std::max(scale, std::abs(ref.f[i]));
-  }
-  return scale > 0 ? diff / scale : (diff > 0 ? INFINITY : 0.0);  // all slack: both must be exactly zero
+  return test::largestRelativeDifference(a.f, ref.f);
 }
 
 // Both kernels against the reference: forces, energy, step.

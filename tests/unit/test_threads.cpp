@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "CabledSheet.hpp"
+#include "ForceDifference.hpp"
 #include "MembraneEvaluation.hpp"
 #include "TestScenes.hpp"
 #include "structure/effects/ExternalLoads.hpp"
@@ -74,10 +75,7 @@ Forces evaluate(const Model& m, const MembraneForces& mf, int threads) {
 }
 
 double maxRelDiff(const std::vector<double>& a, const std::vector<double>& ref) {
-  double diff = 0, scale = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i)
-    diff = std::max(diff, std::abs(a[i] - ref[i])), scale = std::max(scale, std::abs(ref[i]));
-  return diff / scale;
+  return test::largestRelativeDifference(a, ref);
 }
 
 std::string errorOf(const std::string& yaml) {

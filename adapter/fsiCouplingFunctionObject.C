@@ -21,6 +21,7 @@
 #include "fsiCouplingOptions.H"
 #include "fsiFloatingPointTraps.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
+#include "fsiRankWait.H"
 #include "fvcGrad.H"
 #include "movingWallVelocityFvPatchVectorField.H"
 #include "structure/run/Simulation.hpp"
@@ -818,6 +819,9 @@ bool fsiCoupling::execute() {
     repeat = scheme_->requiresReadingCheckpoint() ? 1 : 0;
     finished = scheme_->isCouplingOngoing() ? 0 : 1;
   }
+  // The other ranks sleep while the master runs the structure, so its threads get their cores.
+  fsiRankWait::release();
+  fsiRankWait::wait();
   Pstream::scatter(repeat);
   Pstream::scatter(finished);
   const auto t2 = Clock::now();

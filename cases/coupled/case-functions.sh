@@ -197,7 +197,10 @@ runSolver() {
     [ "$(id -u)" = 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
     # --oversubscribe: Open MPI counts physical cores as slots and would refuse more ranks than that.
     cmd=(mpirun -np "$np")
-    mpirun --version 2> /dev/null | grep -q "Open MPI" && cmd+=(--oversubscribe)
+    # --bind-to none: Open MPI pins each of 2 ranks to a core, and with it the master rank's structure threads
+    # (solver.threads) to the master's one core; unpinned, they use the cores the other ranks free while they
+    # sleep in the structure's part of the window (adapter/fsiRankWait.H, docs/PERFORMANCE.md).
+    mpirun --version 2> /dev/null | grep -q "Open MPI" && cmd+=(--oversubscribe --bind-to none)
     cmd+=(pimpleFoam -parallel)
   fi
   echo "Running ${cmd[*]} (log: $log)"

@@ -74,9 +74,7 @@ Forces evaluate(const Model& m, const MembraneForces& mf, int threads) {
   return test::evaluateMembranes(m, mf, threads);
 }
 
-double maxRelDiff(const std::vector<double>& a, const std::vector<double>& ref) {
-  return test::largestRelativeDifference(a, ref);
-}
+using test::largestRelativeDifference;
 
 std::string errorOf(const std::string& yaml) {
   try {
@@ -102,7 +100,7 @@ TEST(Threads, MembraneKernelEqualsSerial) {
     for (int threads : {2, 3, 5}) {
       const Forces par = evaluate(m, mf, threads);
       ASSERT_EQ(par.shares, threads);  // really split
-      EXPECT_LE(maxRelDiff(par.f, serial.f), 1e-12) << threads << " threads";
+      EXPECT_LE(largestRelativeDifference(par.f, serial.f), 1e-12) << threads << " threads";
       EXPECT_LE(std::abs(par.energy - serial.energy), 1e-12 * serial.energy) << threads << " threads";
       EXPECT_GT(serial.energy, 0.0);
       EXPECT_EQ(par.dt, serial.dt) << threads << " threads";  // a minimum: no rounding
@@ -159,7 +157,8 @@ TEST(Threads, PressureForcesEqualSerial) {
     for (int threads : {2, 3, 5}) {
       const Evaluation par = evaluateAll(m, {e}, threads);
       ASSERT_EQ(par.shares, threads);
-      EXPECT_LE(maxRelDiff(par.fext, serial.fext), 1e-12) << e->name() << ", " << threads << " threads";
+      EXPECT_LE(largestRelativeDifference(par.fext, serial.fext), 1e-12)
+          << e->name() << ", " << threads << " threads";
     }
   }
 }
@@ -239,7 +238,7 @@ TEST(Threads, CableForcesEqualSerial) {
                                  (kernel == CableKernel::Batched ? "" : ", per cable");
         const Evaluation par = evaluateAll(m, {&cf}, threads);
         ASSERT_EQ(par.shares, threads) << what;  // really split
-        EXPECT_LE(maxRelDiff(par.fint, serial.fint), 1e-12) << what;
+        EXPECT_LE(largestRelativeDifference(par.fint, serial.fint), 1e-12) << what;
         EXPECT_LE(std::abs(par.energy - serial.energy), 1e-12 * serial.energy) << what;
         EXPECT_EQ(par.dt, serial.dt) << what;  // a minimum: no rounding
       }
@@ -268,7 +267,7 @@ TEST(Threads, CablesAndMembranesEqualSerial) {
           std::to_string(m.cables.count) + " cables, " + std::to_string(threads) + " threads";
       const Evaluation par = evaluateAll(m, {&mf, &cf}, threads);
       ASSERT_EQ(par.shares, threads) << what;
-      EXPECT_LE(maxRelDiff(par.fint, serial.fint), 1e-12) << what;
+      EXPECT_LE(largestRelativeDifference(par.fint, serial.fint), 1e-12) << what;
       EXPECT_LE(std::abs(par.energy - serial.energy), 1e-12 * serial.energy) << what;
       EXPECT_EQ(par.dt, serial.dt) << what;
     }
@@ -292,8 +291,8 @@ TEST(Threads, AllEffectsEqualSerial) {
   for (int threads : {2, 3, 5}) {
     const Evaluation par = evaluateAll(m, effects, threads);
     ASSERT_EQ(par.shares, threads);
-    EXPECT_LE(maxRelDiff(par.fint, serial.fint), 1e-12) << threads << " threads";
-    EXPECT_LE(maxRelDiff(par.fext, serial.fext), 1e-12) << threads << " threads";
+    EXPECT_LE(largestRelativeDifference(par.fint, serial.fint), 1e-12) << threads << " threads";
+    EXPECT_LE(largestRelativeDifference(par.fext, serial.fext), 1e-12) << threads << " threads";
     EXPECT_NEAR(par.energy, serial.energy, 1e-12 * serial.energy) << threads << " threads";
     EXPECT_EQ(par.dt, serial.dt) << threads << " threads";
   }
@@ -320,8 +319,8 @@ TEST(Threads, StepsEqualSerial) {
     const Nodes& nb = threaded.model->nodes;
     std::vector<double> ua(na.x.size()), ub(nb.x.size());
     for (std::size_t d = 0; d < ua.size(); ++d) ua[d] = na.x[d] - na.X[d], ub[d] = nb.x[d] - nb.X[d];
-    EXPECT_LE(maxRelDiff(ub, ua), 1e-11) << threads << " threads";
-    EXPECT_LE(maxRelDiff(nb.v, na.v), 1e-11) << threads << " threads";
+    EXPECT_LE(largestRelativeDifference(ub, ua), 1e-11) << threads << " threads";
+    EXPECT_LE(largestRelativeDifference(nb.v, na.v), 1e-11) << threads << " threads";
     // The bookkeeping: every term of the balance, the balance itself and the step.
     const EnergyLedger& lb = b.energy();
     const double scale = la.scale();
@@ -432,7 +431,8 @@ TEST(Threads, RelaxationEqualsSerial) {
       EXPECT_EQ(par.r.iterations, serial.r.iterations) << v.solver << ", " << threads << " threads";
       EXPECT_EQ(par.r.kineticResets, serial.r.kineticResets) << v.solver << ", " << threads << " threads";
       EXPECT_EQ(par.r.massIncreases, serial.r.massIncreases) << v.solver << ", " << threads << " threads";
-      EXPECT_LE(maxRelDiff(par.u, serial.u), 1e-10) << v.solver << ", " << threads << " threads";
+      EXPECT_LE(largestRelativeDifference(par.u, serial.u), 1e-10)
+          << v.solver << ", " << threads << " threads";
     }
   }
 }
@@ -464,5 +464,5 @@ TEST(Threads, RelaxationDoesNotDependOnTheScheduling) {
                  a.energyRatio != b.energyRatio || a.strain != b.strain;
   }
   EXPECT_EQ(differing, 0) << "iterations whose sums depend on the scheduling";
-  EXPECT_EQ(maxRelDiff(one.u, par.u), 0.0);
+  EXPECT_EQ(largestRelativeDifference(one.u, par.u), 0.0);
 }

@@ -121,6 +121,33 @@ void BM_MembraneKernelThreads2(benchmark::State& state) {
   membraneKernelThreads(state, 2);
 }
 
+// The fabric's bending alone through ThreadedForces (hinge angles, barrier, hinge moments; clearing
+// included; wall time), 1 and 2 threads; items are triangles (≈ 1.5 hinges each).
+const char* kBending = "  bending: {triangles: sheet, rigidity: 1.0e-3}";
+void bendingThreads(benchmark::State& state, int threads) {
+  Scene& s = cachedScene(state.range(0), kBending);
+  Model& m = *s.model;
+  const Effect* bending = nullptr;
+  for (const Effect* e : s.effectList())
+    if (e->name().rfind("bending", 0) == 0) bending = e;
+  ThreadedForces forces({bending}, threads, m.nodes.count);
+  for (auto _ : state) {
+    const ForceContext ctx = forces.evaluate(m.nodes, 0.0, 1.0, false);
+    benchmark::DoNotOptimize(ctx.minStableDt);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * m.membranes.count);
+  state.counters["triangles"] = m.membranes.count;
+  state.counters["hinges"] = bending->splitItems();
+  state.counters["shares"] = forces.shares();
+}
+void BM_BendingThreads1(benchmark::State& state) {
+  bendingThreads(state, 1);
+}
+void BM_BendingThreads2(benchmark::State& state) {
+  bendingThreads(state, 2);
+}
+
 // The pressure effect alone (the scene's only load).
 void BM_PressureKernel(benchmark::State& state) {
   Scene& s = cachedScene(state.range(0), "");
@@ -269,6 +296,13 @@ void BM_StepPerElement(benchmark::State& state) {
 void BM_StepThreads2(benchmark::State& state) {
   runSteps(state, "", MembraneKernel::Batched, 2);
 }
+// A step with the fabric's bending (membranes, pressure, bending), 1 and 2 threads (wall time).
+void BM_StepWithBendingThreads1(benchmark::State& state) {
+  runSteps(state, kBending, MembraneKernel::Batched, 1);
+}
+void BM_StepWithBendingThreads2(benchmark::State& state) {
+  runSteps(state, kBending, MembraneKernel::Batched, 2);
+}
 void BM_StepWithViscosityAndGravity(benchmark::State& state) {
   runSteps(state,
            "  stiffness_damping: {beta: 1.0e-7}\n  bulk_viscosity: {b1: 0.06}\n  gravity: {acceleration: [0, "
@@ -336,4 +370,8 @@ BENCHMARK(BM_StepThreads2)
     ->Arg(50000)
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+BENCHMARK(BM_BendingThreads1)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_BendingThreads2)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_StepWithBendingThreads1)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_StepWithBendingThreads2)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond)->UseRealTime();
 BENCHMARK(BM_StepWithViscosityAndGravity)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);

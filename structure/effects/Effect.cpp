@@ -27,12 +27,9 @@ ForceContext evaluateEffects(Nodes& nodes, const std::vector<const Effect*>& eff
   return ctx;
 }
 
-void nodeSpanOf(const std::vector<int>& conn, int k, int begin, int end, int& lo, int& hi) {
-  lo = hi = 0;
-  if (begin >= end) return;
-  const auto [mn, mx] = std::minmax_element(conn.begin() + long(k) * begin, conn.begin() + long(k) * end);
-  lo = *mn;
-  hi = *mx + 1;
+void appendElementNodes(const std::vector<int>& conn, int k, int element, std::vector<int>& nodes) {
+  const auto first = conn.begin() + long(k) * element;
+  nodes.insert(nodes.end(), first, first + k);
 }
 
 }  // namespace fsi::structure

@@ -29,21 +29,28 @@ class Effect {
   virtual void addForces(ForceContext& ctx) const = 0;
 
   // Effects whose elements can be evaluated in contiguous ranges on separate threads (ThreadedForces.hpp).
-  // An effect that does not split runs whole on the first share's thread.
+  // An effect that does not split runs whole on the first thread, while the others wait.
   /// Elements to split; 0: the effect does not split.
   virtual int splitItems() const { return 0; }
   /// Share boundaries fall on multiples of this (a batched kernel's batch width).
   virtual int splitAlignment() const { return 1; }
-  /// Lowest node and one past the highest node that elements [begin, end) write to ({0, 0} if none).
-  virtual void splitNodeSpan(int /*begin*/, int /*end*/, int& lo, int& hi) const { lo = hi = 0; }
+  /// Appends the nodes that element `element` writes forces to (with repeats, in any order).
+  virtual void splitElementNodes(int /*element*/, std::vector<int>& /*nodes*/) const {}
   /// The forces of elements [begin, end) (and their stable step and strain energy) into ctx: addForces()
-  /// is addRange(ctx, 0, splitItems()). Of the ranges of one evaluation only the first starts at 0, and its
-  /// ctx holds the node arrays themselves: an effect may add a part that is not per element there.
+  /// is addRange(ctx, 0, splitItems()). The ranges of one evaluation tile [0, splitItems()) and each writes
+  /// only to the nodes its elements name (splitElementNodes): the caller may send each range's forces into
+  /// different arrays.
   virtual void addRange(ForceContext& /*ctx*/, int /*begin*/, int /*end*/) const {}
+  /// A per-item pass that every range's addRange needs done for ALL items first (e.g. the bending's hinge
+  /// angles, which each triangle's curvature reads): items [begin, end) at ctx.x into the effect's own
+  /// scratch, no node forces. ThreadedForces splits it over the threads, then waits at a barrier; addForces()
+  /// runs prepareRange(ctx, 0, prepareItems()) before its elements. 0: none.
+  virtual int prepareItems() const { return 0; }
+  virtual void prepareRange(const ForceContext& /*ctx*/, int /*begin*/, int /*end*/) const {}
 };
 
-/// Lowest node and one past the highest node in conn[k * begin, k * end) (k nodes per element).
-void nodeSpanOf(const std::vector<int>& conn, int k, int begin, int end, int& lo, int& hi);
+/// Appends conn[k * element, k * element + k) (k nodes per element) to nodes.
+void appendElementNodes(const std::vector<int>& conn, int k, int element, std::vector<int>& nodes);
 
 struct Nodes;
 

@@ -25,11 +25,10 @@ Gravity::Gravity(const std::vector<double>& physicalMass, std::array<double, 3> 
     for (int k = 0; k < 3; ++k) weight_[3 * i + k] = physicalMass[i] * g[k];
 }
 
-void Gravity::addForces(ForceContext& ctx) const {
+void Gravity::addRange(ForceContext& ctx, int begin, int end) const {
   const double s = ctx.loadFactor * fn_(ctx.time);
   double* __restrict f = ctx.fext;
-  const std::size_t n = weight_.size();
-  for (std::size_t i = 0; i < n; ++i) f[i] += s * weight_[i];
+  for (std::size_t i = 3 * std::size_t(begin), n = 3 * std::size_t(end); i < n; ++i) f[i] += s * weight_[i];
 }
 
 NodalForces::NodalForces(std::string label, std::vector<int> nodes, std::array<double, 3> force,

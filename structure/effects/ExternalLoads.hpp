@@ -20,8 +20,8 @@ class FollowerPressure final : public Effect {
   std::string name() const override { return "pressure:" + label_; }
   void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
   int splitItems() const override { return int(conn_.size() / 3); }
-  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override {
-    nodeSpanOf(conn_, 3, begin, end, lo, hi);
+  void splitElementNodes(int element, std::vector<int>& nodes) const override {
+    appendElementNodes(conn_, 3, element, nodes);
   }
   void addRange(ForceContext& ctx, int begin, int end) const override;
   double valueAt(double t) const { return value_ * fn_(t); }
@@ -38,7 +38,11 @@ class Gravity final : public Effect {
  public:
   Gravity(const std::vector<double>& physicalMass, std::array<double, 3> g, TimeFunction f);
   std::string name() const override { return "gravity"; }
-  void addForces(ForceContext& ctx) const override;
+  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
+  // Splits over the nodes for threads (ThreadedForces.hpp): each writes only to itself.
+  int splitItems() const override { return int(weight_.size() / 3); }
+  void splitElementNodes(int node, std::vector<int>& nodes) const override { nodes.push_back(node); }
+  void addRange(ForceContext& ctx, int begin, int end) const override;
 
  private:
   std::vector<double> weight_;  ///< 3 per node: m g

@@ -230,13 +230,29 @@ FabricBending::FabricBending(std::string label, const std::vector<int>& conn, co
       hingeStiffness_[std::size_t(T.hinge[std::size_t(e)])] += T.weight * k;
     }
   }
+  hingeTris_.assign(2 * theta0_.size(), -1);
+  energyAt_.assign(2 * theta0_.size(), 0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::array<int, 3>& th = tris_[t].hinge;
+    if (tris_[t].weight == 0) continue;
+    int lowest = -1;
+    for (int h : th)
+      if (h >= 0 && (lowest < 0 || h < lowest)) lowest = h;
+    for (int e = 0; e < 3; ++e) {
+      const int h = th[std::size_t(e)];
+      if (h < 0) continue;
+      const std::size_t side = 2 * std::size_t(h) + (hingeTris_[2 * std::size_t(h)] < 0 ? 0 : 1);
+      hingeTris_[side] = int(3 * t) + e;
+      energyAt_[side] = h == lowest ? 1 : 0;
+    }
+  }
+  dtheta_.assign(theta0_.size(), 0.0);
+  moment_.assign(theta0_.size(), 0.0);
+  g_.assign(12 * theta0_.size(), 0.0);
 }
 
-void FabricBending::hingeAngles(const double* x, bool gradients) const {
-  const std::size_t nh = theta0_.size();
-  dtheta_.resize(nh);
-  if (gradients) g_.resize(12 * nh);
-  for (std::size_t h = 0; h < nh; ++h) {
+void FabricBending::hingeAngles(const double* x, bool gradients, int begin, int end) const {
+  for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
     const int* n = &hingeNodes_[4 * h];
     const double theta =
         hingeAngle(&x[3 * n[0]], &x[3 * n[1]], &x[3 * n[2]], &x[3 * n[3]], gradients ? &g_[12 * h] : nullptr);
@@ -245,7 +261,7 @@ void FabricBending::hingeAngles(const double* x, bool gradients) const {
 }
 
 std::array<double, 3> FabricBending::curvature(int t, const double* x) const {
-  hingeAngles(x, false);
+  hingeAngles(x, false, 0, hinges());
   const Triangle& T = tris_[std::size_t(t)];
   std::array<double, 3> S{0, 0, 0};
   for (int e = 0; e < 3; ++e) {
@@ -256,34 +272,68 @@ std::array<double, 3> FabricBending::curvature(int t, const double* x) const {
   return S;
 }
 
+void FabricBending::triangleMoments(int t, double* dEdTheta, double* energy) const {
+  const Triangle& T = tris_[std::size_t(t)];
+  double th[3] = {0, 0, 0};
+  for (int k = 0; k < 3; ++k)
+    if (T.hinge[std::size_t(k)] >= 0)
+      th[k] = T.sign[std::size_t(k)] * dtheta_[std::size_t(T.hinge[std::size_t(k)])];
+  double S[3];
+  for (int r = 0; r < 3; ++r)
+    S[r] = T.B[std::size_t(3 * r)] * th[0] + T.B[std::size_t(3 * r + 1)] * th[1] +
+           T.B[std::size_t(3 * r + 2)] * th[2];
+  // E_T = ½ w (s11² + 2 s12² + s22²); ∂E/∂S, then ∂E/∂θ = Bᵀ ∂E/∂S, in each hinge's own sign.
+  if (energy != nullptr) *energy += 0.5 * T.weight * (S[0] * S[0] + 2 * S[1] * S[1] + S[2] * S[2]);
+  const double dS[3] = {T.weight * S[0], 2 * T.weight * S[1], T.weight * S[2]};
+  for (int e = 0; e < 3; ++e)
+    dEdTheta[e] = T.sign[std::size_t(e)] * (T.B[std::size_t(e)] * dS[0] + T.B[std::size_t(3 + e)] * dS[1] +
+                                            T.B[std::size_t(6 + e)] * dS[2]);
+}
+
 void FabricBending::addForces(ForceContext& ctx) const {
-  const double* x = ctx.x;
-  double* f = ctx.fint;
-  hingeAngles(x, true);
-  moment_.assign(theta0_.size(), 0.0);
+  // Serially each triangle's curvature once, its moments scattered to its hinges. addRange (threads)
+  // gathers them per hinge instead, so that a hinge range writes only its own moments, at the price of
+  // each curvature three times (10–15 % more work, docs/PERFORMANCE.md).
+  hingeAngles(ctx.x, true, 0, hinges());
+  std::fill(moment_.begin(), moment_.end(), 0.0);
   double energy = 0;
-  for (const Triangle& T : tris_) {
-    if (T.weight == 0) continue;
-    double th[3] = {0, 0, 0};
+  for (std::size_t t = 0; t < tris_.size(); ++t) {
+    if (tris_[t].weight == 0) continue;
+    double m[3];
+    triangleMoments(int(t), m, ctx.wantEnergy ? &energy : nullptr);
     for (int e = 0; e < 3; ++e)
-      if (T.hinge[std::size_t(e)] >= 0)
-        th[e] = T.sign[std::size_t(e)] * dtheta_[std::size_t(T.hinge[std::size_t(e)])];
-    double S[3];
-    for (int r = 0; r < 3; ++r)
-      S[r] = T.B[std::size_t(3 * r)] * th[0] + T.B[std::size_t(3 * r + 1)] * th[1] +
-             T.B[std::size_t(3 * r + 2)] * th[2];
-    // E_T = ½ w (s11² + 2 s12² + s22²); ∂E/∂S, then ∂E/∂θ = Bᵀ ∂E/∂S.
-    const double dS[3] = {T.weight * S[0], 2 * T.weight * S[1], T.weight * S[2]};
-    if (ctx.wantEnergy) energy += 0.5 * T.weight * (S[0] * S[0] + 2 * S[1] * S[1] + S[2] * S[2]);
-    for (int e = 0; e < 3; ++e) {
-      if (T.hinge[std::size_t(e)] < 0) continue;
-      const double dth =
-          T.B[std::size_t(e)] * dS[0] + T.B[std::size_t(3 + e)] * dS[1] + T.B[std::size_t(6 + e)] * dS[2];
-      moment_[std::size_t(T.hinge[std::size_t(e)])] += T.sign[std::size_t(e)] * dth;
-    }
+      if (tris_[t].hinge[std::size_t(e)] >= 0) moment_[std::size_t(tris_[t].hinge[std::size_t(e)])] += m[e];
   }
+  if (ctx.wantEnergy) ctx.strainEnergy += energy;
+  hingeForces(ctx, 0, hinges());
+}
+
+void FabricBending::prepareRange(const ForceContext& ctx, int begin, int end) const {
+  hingeAngles(ctx.x, true, begin, end);
+}
+
+void FabricBending::addRange(ForceContext& ctx, int begin, int end) const {
+  double energy = 0;
+  for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
+    double moment = 0;
+    for (std::size_t side = 2 * h; side < 2 * h + 2; ++side) {
+      const int at = hingeTris_[side];
+      if (at < 0) continue;
+      double m[3];
+      // A triangle's energy once: at its lowest-numbered hinge (energyAt_).
+      triangleMoments(at / 3, m, ctx.wantEnergy && energyAt_[side] ? &energy : nullptr);
+      moment += m[at % 3];
+    }
+    moment_[h] = moment;
+  }
+  if (ctx.wantEnergy) ctx.strainEnergy += energy;
+  hingeForces(ctx, begin, end);
+}
+
+void FabricBending::hingeForces(ForceContext& ctx, int begin, int end) const {
+  double* f = ctx.fint;
   double w2max = 0;
-  for (std::size_t h = 0; h < theta0_.size(); ++h) {
+  for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
     const int* n = &hingeNodes_[4 * h];
     const double* g = &g_[12 * h];
     const double m = moment_[h];
@@ -298,12 +348,11 @@ void FabricBending::addForces(ForceContext& ctx) const {
       }
     }
   }
-  if (ctx.wantEnergy) ctx.strainEnergy += energy;
   if (w2max > 0) ctx.minStableDt = std::min(ctx.minStableDt, 2.0 / std::sqrt(w2max));
 }
 
 double FabricBending::energy(const double* x) const {
-  hingeAngles(x, false);
+  hingeAngles(x, false, 0, hinges());
   double E = 0;
   for (const Triangle& T : tris_) {
     if (T.weight == 0) continue;

@@ -26,12 +26,24 @@ InterfacePressure::InterfacePressure(std::vector<int> triangleConn, std::vector<
   }
 }
 
-void InterfacePressure::splitNodeSpan(int begin, int end, int& lo, int& hi) const {
-  lo = hi = 0;
-  if (begin >= end) return;
-  lo = std::numeric_limits<int>::max();
-  for (int j = 3 * begin; j < 3 * end; ++j) lo = std::min(lo, nodes_[std::size_t(conn_[std::size_t(j)])]);
-  for (int j = 3 * begin; j < 3 * end; ++j) hi = std::max(hi, nodes_[std::size_t(conn_[std::size_t(j)])] + 1);
+namespace {
+// The interface nodes [first, last) whose nodal forces triangles [begin, end) of `triangles` add; all of
+// them for the whole range (also without triangles).
+void nodeSlice(std::size_t nodes, int triangles, int begin, int end, std::size_t& first, std::size_t& last) {
+  const auto at = [&](int e) {
+    return e >= triangles ? nodes
+                          : std::size_t((unsigned long long)(nodes) * unsigned(e) / unsigned(triangles));
+  };
+  first = begin <= 0 ? 0 : at(begin);
+  last = at(end);
+}
+}  // namespace
+
+void InterfacePressure::splitElementNodes(int element, std::vector<int>& nodes) const {
+  for (int k = 0; k < 3; ++k) nodes.push_back(nodes_[std::size_t(conn_[3 * std::size_t(element) + k])]);
+  std::size_t first = 0, last = 0;
+  nodeSlice(nodes_.size(), splitItems(), element, element + 1, first, last);
+  for (std::size_t i = first; i < last; ++i) nodes.push_back(nodes_[i]);
 }
 
 void InterfacePressure::addRange(ForceContext& ctx, const InterfaceLoad& load, int begin, int end) const {
@@ -44,8 +56,9 @@ void InterfacePressure::addRange(ForceContext& ctx, const InterfaceLoad& load, i
   const double lf = ctx.loadFactor;
   double* __restrict f = ctx.fext;
   if (load.kind == InterfaceLoadKind::NodalForces) {
-    if (begin > 0) return;
-    for (std::size_t i = 0; i < n; ++i)
+    std::size_t first = 0, last = 0;
+    nodeSlice(n, splitItems(), begin, end, first, last);
+    for (std::size_t i = first; i < last; ++i)
       for (int k = 0; k < 3; ++k) f[3 * nodes_[i] + k] += lf * q[3 * i + std::size_t(k)];
     return;
   }

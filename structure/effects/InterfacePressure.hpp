@@ -51,10 +51,11 @@ class InterfacePressure final : public Effect {
   /// The forces of any load on this interface (e.g. to sum a load that is not the current one).
   void addForces(ForceContext& ctx, const InterfaceLoad& load) const { addRange(ctx, load, 0, splitItems()); }
   // Splits over the triangles for threads (ThreadedForces.hpp). Nodal forces are a cheap pass over the
-  // interface nodes: the range that starts at triangle 0 (the first share, which writes to the node
-  // arrays themselves) adds them all.
+  // interface nodes, cut in proportion: triangles [b, e) of T add the interface nodes [n b / T, n e / T)
+  // (nodeSlice), so the ranges of one evaluation add each node once, and each triangle names its slice's
+  // nodes among those it writes to.
   int splitItems() const override { return int(conn_.size() / 3); }
-  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override;
+  void splitElementNodes(int element, std::vector<int>& nodes) const override;
   void addRange(ForceContext& ctx, int begin, int end) const override { addRange(ctx, load_, begin, end); }
   const std::vector<int>& nodes() const { return nodes_; }
 

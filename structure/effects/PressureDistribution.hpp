@@ -35,8 +35,8 @@ class PressureDistribution final : public Effect {
   std::string name() const override { return "pressure_distribution:" + label_; }
   void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
   int splitItems() const override { return int(sixth_.size()); }
-  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override {
-    nodeSpanOf(conn_, 3, begin, end, lo, hi);
+  void splitElementNodes(int element, std::vector<int>& nodes) const override {
+    appendElementNodes(conn_, 3, element, nodes);
   }
   void addRange(ForceContext& ctx, int begin, int end) const override;
 

@@ -14,35 +14,81 @@ namespace fsi::structure {
 
 ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, int nodes)
     : effects_(std::move(effects)), nodes_(nodes) {
-  int largest = 0;
+  int largest = -1, most = 0;
   for (const Effect* e : effects_) {
-    (e->splitItems() > 0 ? split_ : whole_).push_back(e);
-    largest = std::max(largest, e->splitItems());
+    if (e->splitItems() > 0) {
+      if (e->splitItems() > most) most = e->splitItems(), largest = int(split_.size());
+      split_.push_back(e);
+      if (e->prepareItems() > 0) prepare_.push_back(e);
+    } else {
+      whole_.push_back(e);
+    }
   }
-  if (threads <= 1 || !threadsAvailable() || largest < kMinParallelItems) return;
+  if (threads <= 1 || !threadsAvailable() || most < kMinParallelItems) return;
   shares_.resize(std::size_t(threads));
+
+  // Equal element counts, boundaries on whole batches; the last share takes the remainder.
+  auto range = [&](const Effect* e, int s, int& begin, int& end) {
+    const int n = e->splitItems(), a = e->splitAlignment();
+    auto boundary = [&](int b) {
+      if (b == 0 || b == threads) return b == 0 ? 0 : n;
+      return std::max(std::min(n, 1), int(long(n) * b / threads / a * a));
+    };
+    begin = boundary(s), end = boundary(s + 1);
+  };
+  // The bands start at the lowest node of each share's first element of the largest effect (sorted by
+  // lowest node, so increasing; kept increasing whatever the order).
+  std::vector<int> cut(std::size_t(threads) + 1, nodes);
+  cut[0] = 0;
+  std::vector<int> en;
+  for (int s = 1; s < threads; ++s) {
+    int b = 0, e = 0;
+    range(split_[std::size_t(largest)], s, b, e);
+    int lo = cut[std::size_t(s) - 1];
+    if (b < e) {
+      en.clear();
+      split_[std::size_t(largest)]->splitElementNodes(b, en);
+      if (!en.empty()) lo = std::max(lo, *std::min_element(en.begin(), en.end()));
+    }
+    cut[std::size_t(s)] = std::min(lo, nodes);
+  }
+
   for (int s = 0; s < threads; ++s) {
     Share& sh = shares_[std::size_t(s)];
-    sh.nodeBegin = int(long(nodes) * s / threads);
-    sh.nodeEnd = int(long(nodes) * (s + 1) / threads);
-    int lo = std::numeric_limits<int>::max(), hi = 0;
-    for (const Effect* e : split_) {
-      // Equal element counts, boundaries on whole batches; the last share takes the remainder. Only share 0's
-      // range starts at element 0 (Effect::addRange), even for fewer elements than shares.
-      const int n = e->splitItems(), a = e->splitAlignment();
-      auto boundary = [&](int b) {
-        if (b == 0 || b == threads) return b == 0 ? 0 : n;
-        return std::max(std::min(n, 1), int(long(n) * b / threads / a * a));
-      };
-      const Range r{boundary(s), boundary(s + 1)};
-      sh.ranges.push_back(r);
-      int l = 0, h = 0;
-      e->splitNodeSpan(r.begin, r.end, l, h);
-      if (l < h) lo = std::min(lo, l), hi = std::max(hi, h);
+    sh.nodeBegin = cut[std::size_t(s)];
+    sh.nodeEnd = cut[std::size_t(s) + 1];
+    std::vector<int> seamNodes;
+    for (std::size_t i = 0; i < split_.size(); ++i) {
+      const Effect* eff = split_[i];
+      int b = 0, end = 0;
+      range(eff, s, b, end);
+      // Blocks of whole batches: a block writes directly when all its elements stay in the band.
+      const int a = std::max(1, eff->splitAlignment());
+      for (int j = b; j < end;) {
+        const int blockEnd = std::min(end, (j / a + 1) * a);
+        en.clear();
+        for (int k = j; k < blockEnd; ++k) eff->splitElementNodes(k, en);
+        const bool direct = std::all_of(en.begin(), en.end(),
+                                        [&](int node) { return node >= sh.nodeBegin && node < sh.nodeEnd; });
+        if (!direct) seamNodes.insert(seamNodes.end(), en.begin(), en.end());
+        if (!sh.runs.empty() && sh.runs.back().effect == int(i) && sh.runs.back().direct == direct &&
+            sh.runs.back().end == j)
+          sh.runs.back().end = blockEnd;
+        else
+          sh.runs.push_back({int(i), j, blockEnd, direct});
+        j = blockEnd;
+      }
     }
-    sh.lo = lo < hi ? 3 * lo : 0;
-    sh.hi = lo < hi ? 3 * hi : 0;
-    if (s > 0) sh.fint.assign(std::size_t(sh.hi), 0.0), sh.fext.assign(std::size_t(sh.hi), 0.0);
+    std::sort(seamNodes.begin(), seamNodes.end());
+    seamNodes.erase(std::unique(seamNodes.begin(), seamNodes.end()), seamNodes.end());
+    sh.touched = std::move(seamNodes);
+    if (!sh.touched.empty()) {
+      // Indexed by dof, as the node arrays: the kernels write through the same node numbers. Left
+      // uninitialised: only the touched nodes' pages are ever written (and so mapped).
+      const std::size_t size = 3 * std::size_t(sh.touched.back() + 1);
+      sh.fint.reset(new double[size]);
+      sh.fext.reset(new double[size]);
+    }
   }
 }
 
@@ -51,40 +97,65 @@ void ThreadedForces::evaluateShare(int s, const ForceContext& base) {
   ForceContext ctx = base;
   ctx.minStableDt = std::numeric_limits<double>::infinity();
   ctx.strainEnergy = 0.0;
-  if (s == 0) {
-    std::fill(base.fint, base.fint + 3 * long(nodes_), 0.0);
-    std::fill(base.fext, base.fext + 3 * long(nodes_), 0.0);
-  } else {
-    std::fill(sh.fint.begin() + sh.lo, sh.fint.begin() + sh.hi, 0.0);
-    std::fill(sh.fext.begin() + sh.lo, sh.fext.begin() + sh.hi, 0.0);
-    ctx.fint = sh.fint.data();
-    ctx.fext = sh.fext.data();
+  std::fill(base.fint + 3 * long(sh.nodeBegin), base.fint + 3 * long(sh.nodeEnd), 0.0);
+  std::fill(base.fext + 3 * long(sh.nodeBegin), base.fext + 3 * long(sh.nodeEnd), 0.0);
+  for (int node : sh.touched)
+    for (int k = 0; k < 3; ++k) sh.fint[3 * std::size_t(node) + k] = sh.fext[3 * std::size_t(node) + k] = 0.0;
+  for (const Run& r : sh.runs) {
+    ctx.fint = r.direct ? base.fint : sh.fint.get();
+    ctx.fext = r.direct ? base.fext : sh.fext.get();
+    split_[std::size_t(r.effect)]->addRange(ctx, r.begin, r.end);
   }
-  for (std::size_t i = 0; i < split_.size(); ++i)
-    split_[i]->addRange(ctx, sh.ranges[i].begin, sh.ranges[i].end);
-  if (s == 0)
-    for (const Effect* e : whole_) e->addForces(ctx);
   sh.dt = ctx.minStableDt;
   sh.energy = ctx.strainEnergy;
 }
 
+void ThreadedForces::evaluateWhole(const ForceContext& base) {
+  ForceContext ctx = base;
+  ctx.minStableDt = std::numeric_limits<double>::infinity();
+  ctx.strainEnergy = 0.0;
+  for (const Effect* e : whole_) e->addForces(ctx);
+  wholeDt_ = ctx.minStableDt;
+  wholeEnergy_ = ctx.strainEnergy;
+}
+
+void ThreadedForces::evaluateShares(int t, int nt, const ForceContext& base) {
+  const int shares = this->shares();
+  if (!prepare_.empty()) {
+    for (int s = t; s < shares; s += nt)
+      for (const Effect* e : prepare_) {
+        const long n = e->prepareItems();
+        e->prepareRange(base, int(n * s / shares), int(n * (s + 1) / shares));
+      }
+#ifdef FSI_HAVE_OPENMP
+#pragma omp barrier
+#endif
+  }
+  for (int s = t; s < shares; s += nt) evaluateShare(s, base);
+  if (whole_.empty()) return;
+#ifdef FSI_HAVE_OPENMP
+#pragma omp barrier
+#endif
+  if (t == 0) evaluateWhole(base);
+}
+
 void ThreadedForces::gather(int s, double* fint, double* fext) const {
   const Share& own = shares_[std::size_t(s)];
-  const int begin = 3 * own.nodeBegin, end = 3 * own.nodeEnd;
-  for (std::size_t t = 1; t < shares_.size(); ++t) {
-    const Share& sh = shares_[t];
-    const int lo = std::max(begin, sh.lo), hi = std::min(end, sh.hi);
-    const double* __restrict bi = sh.fint.data();
-    const double* __restrict be = sh.fext.data();
-    for (int d = lo; d < hi; ++d) {
-      fint[d] += bi[d];
-      fext[d] += be[d];
-    }
+  for (const Share& sh : shares_) {
+    const auto first = std::lower_bound(sh.touched.begin(), sh.touched.end(), own.nodeBegin);
+    const auto last = std::lower_bound(first, sh.touched.end(), own.nodeEnd);
+    const double* __restrict bi = sh.fint.get();
+    const double* __restrict be = sh.fext.get();
+    for (auto it = first; it != last; ++it)
+      for (std::size_t d = 3 * std::size_t(*it), dEnd = d + 3; d < dEnd; ++d) {
+        fint[d] += bi[d];
+        fext[d] += be[d];
+      }
   }
 }
 
 double ThreadedForces::minStableDt() const {
-  double dt = std::numeric_limits<double>::infinity();
+  double dt = whole_.empty() ? std::numeric_limits<double>::infinity() : wholeDt_;
   for (const Share& sh : shares_) dt = std::min(dt, sh.dt);
   return dt;
 }
@@ -92,7 +163,20 @@ double ThreadedForces::minStableDt() const {
 double ThreadedForces::strainEnergy() const {
   double e = 0.0;
   for (const Share& sh : shares_) e += sh.energy;
-  return e;
+  return whole_.empty() ? e : e + wholeEnergy_;
+}
+
+long ThreadedForces::seamElements() const {
+  long n = 0;
+  for (const Share& sh : shares_)
+    for (const Run& r : sh.runs) n += r.direct ? 0 : r.end - r.begin;
+  return n;
+}
+
+long ThreadedForces::splitElements() const {
+  long n = 0;
+  for (const Effect* e : split_) n += e->splitItems();
+  return n;
 }
 
 ForceContext ThreadedForces::evaluate(Nodes& nodes, double time, double loadFactor, bool wantEnergy) {
@@ -105,7 +189,7 @@ ForceContext ThreadedForces::evaluate(Nodes& nodes, double time, double loadFact
     // The runtime may give fewer threads than asked (nested regions, OMP_THREAD_LIMIT): a thread then takes
     // several shares.
     const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-    for (int s = t; s < shares; s += nt) evaluateShare(s, ctx);
+    evaluateShares(t, nt, ctx);
 #pragma omp barrier
     for (int s = t; s < shares; s += nt) gather(s, ctx.fint, ctx.fext);
   }

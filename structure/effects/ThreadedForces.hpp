@@ -2,24 +2,34 @@
 // ThreadedForces: one force evaluation on several threads (scene key solver.threads; docs/PERFORMANCE.md
 // "Threads").
 //
-// Every effect that splits (Effect::splitItems: the membrane kernel, the pressure loads, the cable kernel
-// from kMinParallelItems cables on) is cut into as many contiguous element ranges as there are shares, one
-// share per thread. Share s evaluates its range of every split effect into its own force buffers; share 0
-// writes straight into the node arrays, which it clears first, and also runs the effects that do not split.
-// The elements are sorted by their lowest node and the nodes follow a Morton curve, so a share's elements
-// touch a narrow band of nodes, which is all its buffers clear and hold. Then, after a barrier, each thread
-// adds the buffers into the node arrays over its own range of nodes: no address is written by two threads and
-// nothing is locked. Only the order of the sums at the nodes where two shares meet, and of the energy sums,
-// differs from a serial evaluation (round-off). Colouring (groups of elements without a shared node) would
-// save the buffers but break the batched kernel's contiguous runs of elements and the locality of the sorted
+// Every effect that splits (Effect::splitItems: the membrane kernel, the pressure loads, gravity, the
+// fabric's bending, the cable kernel from kMinParallelItems cables on) is cut into as many contiguous element
+// ranges as there are shares, one share per thread. An effect with a per-item pass that all its elements
+// read (Effect::prepareRange: the bending's hinge angles) has that pass split first, then a barrier. The
+// nodes are cut into as many bands, at the lowest node of each share's first element of the largest split
+// effect: the elements are sorted by their lowest node and the nodes follow a Morton curve, so nearly all of
+// a share's elements have every node in its own band. Those elements write straight into the node arrays,
+// whose band the share clears first: no other thread writes there. The few elements that reach into another
+// band (the seam: where the Morton curve folds back, a share boundary's neighbours) write into the share's
+// own buffer, of which only the nodes they touch are cleared and added. So the forces cross memory once, as
+// in a serial evaluation; a buffer per share over its whole node range (the first design) cost the
+// 10⁶-triangle step a fifth more memory traffic and its 1.8× on 2 cores. The effects that do not split (line
+// and body drag, nodal forces, small cable sets: a few hundred items) write anywhere: they run on the first
+// thread after a barrier, into the node arrays, while the other threads wait (before, they ran after the
+// first share's elements while the others waited: the same wall time, one barrier more; none when a scene has
+// no such effect). Then, after a barrier, each thread adds the seam buffers into its band and moves its
+// band's nodes. Nothing is locked. Only the order of the sums at seam nodes and of the energy sums differs
+// from a serial evaluation (round-off). Colouring (groups of elements without a shared node) would need no
+// buffer at all but break the batched kernel's contiguous runs of elements and the locality of the sorted
 // order.
 //
-// The two phases are separate calls so that the integrator can put them in ONE parallel region with its node
-// sweep (CentralDifference::step: fork, forces, barrier, gather and sweep of the same nodes, join): each
+// The phases are separate calls so that the integrator can put them in ONE parallel region with its node
+// sweep (CentralDifference::step: fork, forces, barrier, gather and sweep of the same band, join): each
 // fork, join or barrier costs a thread wake-up, tens of µs on a virtual machine when the threads sleep
 // (OMP_WAIT_POLICY=passive). evaluate() is a whole evaluation in its own region for everything else.
 // Nothing is allocated after construction.
 
+#include <memory>
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
@@ -37,11 +47,13 @@ class ThreadedForces {
   int shares() const { return int(shares_.size()); }
   bool serial() const { return shares_.size() <= 1; }
 
-  /// Phase 1 of share s (one call per share, any thread): clears its force buffers (share 0: base.fint and
-  /// base.fext, whole) and adds the forces of its elements of every split effect (share 0: and of the
-  /// effects that do not split). `base` gives x, v, the node arrays, time, load factor and wantEnergy.
-  void evaluateShare(int s, const ForceContext& base);
-  /// Phase 2, after every share's phase 1: adds the buffers into fint and fext over the nodes
+  /// Phase 1, called by EVERY thread t of nt of a parallel region (it has barriers): thread t evaluates
+  /// shares t, t + nt, ...: its part of the split effects' per-item passes (Effect::prepareRange; then a
+  /// barrier), clears the share's band of base.fint and base.fext and its seam buffer, adds the forces of its
+  /// elements of every split effect; then (after a barrier) thread 0 adds the effects that do not split.
+  /// `base` gives x, v, the node arrays, time, load factor and wantEnergy. The caller puts a barrier after.
+  void evaluateShares(int t, int nt, const ForceContext& base);
+  /// Phase 2, after phase 1 and a barrier: adds the seam buffers into fint and fext over the band
   /// [nodeBegin(s), nodeEnd(s)).
   void gather(int s, double* fint, double* fext) const;
   int nodeBegin(int s) const { return shares_[std::size_t(s)].nodeBegin; }
@@ -49,25 +61,34 @@ class ThreadedForces {
   /// Smallest stable step and strain energy of the last phase 1, over the shares in share order.
   double minStableDt() const;
   double strainEnergy() const;
+  /// Elements (over all split effects) that write into a seam buffer, and all split elements.
+  long seamElements() const;
+  long splitElements() const;
 
   /// A whole evaluation (both phases, one parallel region): as evaluateEffects.
   ForceContext evaluate(Nodes& nodes, double time, double loadFactor, bool wantEnergy);
 
  private:
-  struct Range {
-    int begin = 0, end = 0;
+  /// Elements [begin, end) of split effect `effect`, into the node arrays (direct) or the seam buffer.
+  struct Run {
+    int effect = 0, begin = 0, end = 0;
+    bool direct = true;
   };
   struct alignas(64) Share {
-    std::vector<Range> ranges;       ///< elements of each split effect
-    int lo = 0, hi = 0;              ///< dofs the share's elements write to
-    int nodeBegin = 0, nodeEnd = 0;  ///< nodes whose sums the share's thread gathers (phase 2)
-    std::vector<double> fint, fext;  ///< the share's forces (dofs [lo, hi) used; unused by share 0)
-    double dt = 0, energy = 0;       ///< its stable step and strain energy
+    std::vector<Run> runs;
+    int nodeBegin = 0, nodeEnd = 0;        ///< its band: cleared and written directly, gathered and swept
+    std::unique_ptr<double[]> fint, fext;  ///< seam buffer by dof: only the `touched` nodes' are set
+    std::vector<int> touched;              ///< nodes the seam elements write to, ascending
+    double dt = 0, energy = 0;             ///< its stable step and strain energy
   };
+  void evaluateShare(int s, const ForceContext& base);
+  void evaluateWhole(const ForceContext& base);
   std::vector<const Effect*> effects_;
   std::vector<const Effect*> split_, whole_;
+  std::vector<const Effect*> prepare_;  ///< split effects with a per-item pass before their elements
   int nodes_ = 0;
   std::vector<Share> shares_;
+  double wholeDt_ = 0, wholeEnergy_ = 0;
 };
 
 }  // namespace fsi::structure

@@ -119,8 +119,8 @@ int CableForces::splitAlignment() const {
   return kernel_ == CableKernel::Batched ? cable::kWidth : 1;
 }
 
-void CableForces::splitNodeSpan(int begin, int end, int& lo, int& hi) const {
-  nodeSpanOf(el_.conn, 2, begin, end, lo, hi);
+void CableForces::splitElementNodes(int element, std::vector<int>& nodes) const {
+  appendElementNodes(el_.conn, 2, element, nodes);
 }
 
 void CableForces::evaluate(const double* x, std::vector<double>& tension) const {

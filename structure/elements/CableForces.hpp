@@ -42,7 +42,7 @@ class CableForces final : public Effect {
   /// buffers).
   int splitItems() const override;
   int splitAlignment() const override;
-  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override;
+  void splitElementNodes(int element, std::vector<int>& nodes) const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
   /// Elastic tension [N] of every cable at configuration x.
   void evaluate(const double* x, std::vector<double>& tension) const;

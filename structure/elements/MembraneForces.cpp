@@ -178,8 +178,8 @@ void MembraneForces::addRange(ForceContext& ctx, int begin, int end) const {
   evaluateRange(el_, visc_, kernel_, begin, end, ctx);
 }
 
-void MembraneForces::splitNodeSpan(int begin, int end, int& lo, int& hi) const {
-  nodeSpanOf(el_.conn, 3, begin, end, lo, hi);
+void MembraneForces::splitElementNodes(int element, std::vector<int>& nodes) const {
+  appendElementNodes(el_.conn, 3, element, nodes);
 }
 
 int MembraneForces::splitAlignment() const {

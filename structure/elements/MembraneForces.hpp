@@ -49,7 +49,7 @@ class MembraneForces final : public Effect {
   void addForces(ForceContext& ctx) const override;
   int splitItems() const override { return el_.count; }
   int splitAlignment() const override;
-  void splitNodeSpan(int begin, int end, int& lo, int& hi) const override;
+  void splitElementNodes(int element, std::vector<int>& nodes) const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
   /// Stresses, states and strains at configuration x (no forces); used at output times.
   void evaluate(const double* x, MembraneStressField& out) const;

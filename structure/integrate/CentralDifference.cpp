@@ -160,7 +160,7 @@ double CentralDifference::forcesAndSweep(double limitTime, bool monitor, SweepSu
     // The runtime may give fewer threads than asked (nested regions, OMP_THREAD_LIMIT): a thread then takes
     // several shares.
     const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-    for (int s = t; s < shares; s += nt) forces_.evaluateShare(s, base);
+    forces_.evaluateShares(t, nt, base);
 #pragma omp barrier
     // Every thread derives the same step from the shares' stable steps (a minimum: exact in any order), then
     // completes the forces of its nodes and moves them: the gather and the sweep see the same nodes, so no

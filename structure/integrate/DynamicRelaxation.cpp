@@ -239,7 +239,7 @@ DynamicRelaxation::NodeSums DynamicRelaxation::evaluate(double loadFactor, const
           for (const NodeSums& p : parts_) dxMax = std::max(dxMax, p.dxNext);
         }
       }
-      for (int s = t; s < shares; s += nt) forces_.evaluateShare(s, base);
+      forces_.evaluateShares(t, nt, base);
 #pragma omp barrier
       for (int s = t; s < shares; s += nt) {
         forces_.gather(s, base.fint, base.fext);

@@ -16,6 +16,7 @@
 #include "MembraneEvaluation.hpp"
 #include "TestScenes.hpp"
 #include "structure/effects/ExternalLoads.hpp"
+#include "structure/effects/FabricBending.hpp"
 #include "structure/effects/InterfacePressure.hpp"
 #include "structure/effects/PressureDistribution.hpp"
 #include "structure/effects/ThreadedForces.hpp"
@@ -274,19 +275,22 @@ TEST(Threads, CablesAndMembranesEqualSerial) {
   }
 }
 
-// A whole evaluation of a scene's effects: the membrane kernel and the pressure split, gravity and a nodal
-// force (which do not split) run whole on the first share; internal and external forces, strain energy and
-// the stable step as serially.
+// A whole evaluation of a scene's effects: the membrane kernel, the pressure and gravity split, a nodal
+// force (which does not split) runs on the first thread after the shares; internal and external forces,
+// strain energy and the stable step as serially.
 TEST(Threads, AllEffectsEqualSerial) {
   if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
   const Scene s = rippledSheet(
       aboveThreshold(), "", "  stiffness_damping: {beta: 2.0e-6}\n  gravity: {acceleration: [0, 0, -9.81]}");
   const Model& m = *s.model;
-  const std::vector<const Effect*> effects = s.effectList();
+  const NodalForces nodal("spread", {0, m.nodes.count / 3, m.nodes.count - 1}, {1.0, -2.0, 3.0},
+                          TimeFunction::constant());
+  std::vector<const Effect*> effects = s.effectList();
+  effects.push_back(&nodal);
   int split = 0, whole = 0;
   for (const Effect* e : effects) (e->splitItems() > 0 ? split : whole) += 1;
-  ASSERT_GE(split, 2);  // membrane and pressure
-  ASSERT_GE(whole, 1);  // gravity
+  ASSERT_GE(split, 3);  // membrane, pressure and gravity
+  ASSERT_GE(whole, 1);  // the nodal force
   const Evaluation serial = evaluateAll(m, effects, 1);
   for (int threads : {2, 3, 5}) {
     const Evaluation par = evaluateAll(m, effects, threads);
@@ -295,6 +299,47 @@ TEST(Threads, AllEffectsEqualSerial) {
     EXPECT_LE(largestRelativeDifference(par.fext, serial.fext), 1e-12) << threads << " threads";
     EXPECT_NEAR(par.energy, serial.energy, 1e-12 * serial.energy) << threads << " threads";
     EXPECT_EQ(par.dt, serial.dt) << threads << " threads";
+  }
+}
+
+// The fabric's bending splits over its hinges in two passes (every hinge's angle, a barrier, then each
+// hinge's moment from its two triangles): with the membranes and the pressure, in a whole evaluation and in
+// 40 central-difference steps, on 2, 3 and 5 shares as serially.
+TEST(Threads, BendingEqualsSerial) {
+  if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
+  const std::string bending = "  bending: {triangles: sheet, rigidity: 1.0e-3}";
+  const Scene s = rippledSheet(aboveThreshold(), "", bending);
+  const Model& m = *s.model;
+  const std::vector<const Effect*> effects = s.effectList();
+  const Effect* bend = nullptr;
+  for (const Effect* e : effects)
+    if (e->name().rfind("bending", 0) == 0) bend = e;
+  ASSERT_NE(bend, nullptr);
+  ASSERT_GT(bend->splitItems(), m.membranes.count);  // hinges: about 1.5 per triangle
+  ASSERT_GT(bend->prepareItems(), 0);
+  const Evaluation serial = evaluateAll(m, {bend}, 1), serialAll = evaluateAll(m, effects, 1);
+  ASSERT_GT(serial.energy, 0.0);
+  // Each triangle's energy counted once (at its lowest hinge): the sum over triangles.
+  EXPECT_NEAR(serial.energy, dynamic_cast<const FabricBending&>(*bend).energy(m.nodes.x.data()),
+              1e-12 * serial.energy);
+  for (int threads : {2, 3, 5}) {
+    const Evaluation par = evaluateAll(m, {bend}, threads), parAll = evaluateAll(m, effects, threads);
+    ASSERT_EQ(par.shares, threads);
+    EXPECT_LE(largestRelativeDifference(par.fint, serial.fint), 1e-12) << threads << " threads";
+    EXPECT_NEAR(par.energy, serial.energy, 1e-12 * serial.energy) << threads << " threads";
+    EXPECT_EQ(par.dt, serial.dt) << threads << " threads";
+    EXPECT_LE(largestRelativeDifference(parAll.fint, serialAll.fint), 1e-12) << threads << " threads";
+    EXPECT_NEAR(parAll.energy, serialAll.energy, 1e-12 * serialAll.energy) << threads << " threads";
+  }
+  Scene one = rippledSheet(aboveThreshold(), "", bending);
+  CentralDifference a(*one.model, one.effectList(), one.constraints, one.time.integrator);
+  for (int i = 0; i < 40; ++i) ASSERT_TRUE(a.step(1.0, i % 10 == 0));
+  for (int threads : {2, 5}) {
+    Scene many = rippledSheet(aboveThreshold(), fmt::format("solver: {{threads: {}}}", threads), bending);
+    CentralDifference b(*many.model, many.effectList(), many.constraints, many.time.integrator);
+    for (int i = 0; i < 40; ++i) ASSERT_TRUE(b.step(1.0, i % 10 == 0));
+    EXPECT_LE(largestRelativeDifference(many.model->nodes.v, one.model->nodes.v), 1e-11) << threads;
+    EXPECT_NEAR(b.energy().strain, a.energy().strain, 1e-11 * a.energy().scale()) << threads;
   }
 }
 
@@ -465,4 +510,59 @@ TEST(Threads, RelaxationDoesNotDependOnTheScheduling) {
   }
   EXPECT_EQ(differing, 0) << "iterations whose sums depend on the scheduling";
   EXPECT_EQ(largestRelativeDifference(one.u, par.u), 0.0);
+}
+
+// The seam: on a sheet whose nodes follow the Morton curve and whose triangles are sorted by their lowest
+// node (what every model gets), almost every element writes straight into its share's band of the node
+// arrays; only those near a band boundary go through a buffer. Between two bands of this sheet the boundary
+// is a straight row of cells, 4 triangles each: ≈ 100 × 4 of 40 000 triangles per effect (1 %), 2.5 % at
+// most with whole batches of the kernel. More bands have more boundaries: 2.5 % per boundary. The bands
+// split the nodes about evenly (they also share the node sweep).
+TEST(Threads, SortedElementsWriteIntoTheirBand) {
+  if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
+  const Scene s = rippledSheet(100);  // 40 000 triangles
+  const Model& m = *s.model;
+  for (int threads : {2, 3, 5}) {
+    const ThreadedForces tf(s.effectList(), threads, m.nodes.count);
+    ASSERT_EQ(tf.shares(), threads);
+    EXPECT_EQ(tf.splitElements(), 2L * m.membranes.count);  // membranes and pressure
+    EXPECT_LE(double(tf.seamElements()), 0.025 * (threads - 1) * double(tf.splitElements())) << threads;
+    EXPECT_GT(tf.seamElements(), 0) << threads;  // the bands do meet
+    for (int sh = 0; sh < threads; ++sh)
+      EXPECT_NEAR(tf.nodeEnd(sh) - tf.nodeBegin(sh), double(m.nodes.count) / threads,
+                  0.1 * m.nodes.count / threads)
+          << threads << " shares, band " << sh;
+  }
+}
+
+// Elements in no useful order (a pressure load over the sheet's triangles shuffled, the flow's nodal
+// forces over its nodes shuffled) reach across all bands: most go through the buffers, and the forces
+// are still the serial ones.
+TEST(Threads, ShuffledElementsEqualSerial) {
+  if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
+  const Scene s = rippledSheet(aboveThreshold());
+  const Model& m = *s.model;
+  const int nt = m.membranes.count;
+  std::vector<int> order(static_cast<std::size_t>(nt));
+  std::vector<int> conn;
+  for (int e = 0; e < nt; ++e) order[std::size_t(e)] = int((7919L * e) % nt);  // nt is not a multiple
+  ASSERT_NE(nt % 7919, 0);                                                     // a permutation: 7919 is prime
+  for (int e : order)
+    for (int k = 0; k < 3; ++k) conn.push_back(m.membranes.conn[3 * std::size_t(e) + k]);
+  std::vector<int> nodes(std::size_t(m.nodes.count));
+  for (std::size_t i = 0; i < nodes.size(); ++i) nodes[i] = int((104729L * long(i)) % m.nodes.count);
+  InterfaceLoad forces{InterfaceLoadKind::NodalForces, {}};
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    for (int k = 0; k < 3; ++k) forces.values.push_back(std::sin(0.7 * double(i) + k));
+  const FollowerPressure pressure("shuffled", conn, 100.0, TimeFunction::constant());
+  const InterfacePressure flow(conn, nodes, forces);
+  const std::vector<const Effect*> effects{&pressure, &flow};
+  const Evaluation serial = evaluateAll(m, effects, 1);
+  for (int threads : {2, 3}) {
+    const ThreadedForces tf(effects, threads, m.nodes.count);
+    EXPECT_GT(double(tf.seamElements()), 0.5 * double(tf.splitElements())) << threads;
+    const Evaluation par = evaluateAll(m, effects, threads);
+    ASSERT_EQ(par.shares, threads);
+    EXPECT_LE(largestRelativeDifference(par.fext, serial.fext), 1e-12) << threads << " threads";
+  }
 }

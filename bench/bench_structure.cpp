@@ -98,21 +98,27 @@ void BM_MembraneKernel(benchmark::State& state) {
 void BM_MembraneKernelPerElement(benchmark::State& state) {
   membraneKernel(state, MembraneKernel::PerElement);
 }
-// The batched kernel through the solver's threaded evaluation (ThreadedForces, solver.threads: N): with the
+// One effect through the solver's threaded evaluation (ThreadedForces, solver.threads: N), timed: with the
 // clearing of the force arrays, so the 1-thread variant (the serial evaluateEffects) is the reference for
-// the N-thread one. Wall time: the CPU time counts the calling thread only.
-void membraneKernelThreads(benchmark::State& state, int threads) {
-  Scene& s = cachedScene(state.range(0), "");
-  Model& m = *s.model;
-  ThreadedForces forces({s.effectList().front()}, threads, m.nodes.count);
+// the N-thread one. Register with UseRealTime(): the CPU time counts the calling thread only.
+void timeThreadedEffect(benchmark::State& state, Model& m, const Effect& effect, int threads, long items,
+                        const char* what) {
+  ThreadedForces forces({&effect}, threads, m.nodes.count);
   for (auto _ : state) {
     const ForceContext ctx = forces.evaluate(m.nodes, 0.0, 1.0, false);
     benchmark::DoNotOptimize(ctx.minStableDt);
     benchmark::ClobberMemory();
   }
-  state.SetItemsProcessed(state.iterations() * m.membranes.count);
-  state.counters["triangles"] = m.membranes.count;
+  state.SetItemsProcessed(state.iterations() * items);
+  state.counters[what] = static_cast<double>(items);
   state.counters["shares"] = forces.shares();
+}
+
+// The batched membrane kernel on N threads.
+void membraneKernelThreads(benchmark::State& state, int threads) {
+  Scene& s = cachedScene(state.range(0), "");
+  Model& m = *s.model;
+  timeThreadedEffect(state, m, *s.effectList().front(), threads, m.membranes.count, "triangles");
 }
 void BM_MembraneKernelThreads1(benchmark::State& state) {
   membraneKernelThreads(state, 1);
@@ -130,16 +136,8 @@ void bendingThreads(benchmark::State& state, int threads) {
   const Effect* bending = nullptr;
   for (const Effect* e : s.effectList())
     if (e->name().rfind("bending", 0) == 0) bending = e;
-  ThreadedForces forces({bending}, threads, m.nodes.count);
-  for (auto _ : state) {
-    const ForceContext ctx = forces.evaluate(m.nodes, 0.0, 1.0, false);
-    benchmark::DoNotOptimize(ctx.minStableDt);
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(state.iterations() * m.membranes.count);
-  state.counters["triangles"] = m.membranes.count;
+  timeThreadedEffect(state, m, *bending, threads, m.membranes.count, "triangles");
   state.counters["hinges"] = bending->splitItems();
-  state.counters["shares"] = forces.shares();
 }
 void BM_BendingThreads1(benchmark::State& state) {
   bendingThreads(state, 1);
@@ -238,15 +236,7 @@ void BM_CableKernelViscousPerElement(benchmark::State& state) {
 void cableKernelThreads(benchmark::State& state, int threads) {
   CableNet& net = cachedNet(state.range(0));
   Model& m = net.model;
-  ThreadedForces forces({net.elastic.get()}, threads, m.nodes.count);
-  for (auto _ : state) {
-    const ForceContext ctx = forces.evaluate(m.nodes, 0.0, 1.0, false);
-    benchmark::DoNotOptimize(ctx.minStableDt);
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(state.iterations() * m.cables.count);
-  state.counters["cables"] = m.cables.count;
-  state.counters["shares"] = forces.shares();
+  timeThreadedEffect(state, m, *net.elastic, threads, m.cables.count, "cables");
 }
 void BM_CableKernelThreads1(benchmark::State& state) {
   cableKernelThreads(state, 1);

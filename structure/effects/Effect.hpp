@@ -32,6 +32,10 @@ class Effect {
   // An effect that does not split runs whole on the first thread, while the others wait.
   /// Elements to split; 0: the effect does not split.
   virtual int splitItems() const { return 0; }
+  /// Whether this effect's elements alone can be worth threads (ThreadedForces threads an evaluation only
+  /// when such an effect has kMinParallelItems elements): false for a pass as cheap as gravity's m g per
+  /// node, which splits when something else is threaded but never decides it.
+  virtual bool splitDecides() const { return true; }
   /// Share boundaries fall on multiples of this (a batched kernel's batch width).
   virtual int splitAlignment() const { return 1; }
   /// Appends the nodes that element `element` writes forces to (with repeats, in any order).

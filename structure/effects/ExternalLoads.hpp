@@ -41,6 +41,7 @@ class Gravity final : public Effect {
   void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
   // Splits over the nodes for threads (ThreadedForces.hpp): each writes only to itself.
   int splitItems() const override { return int(weight_.size() / 3); }
+  bool splitDecides() const override { return false; }
   void splitElementNodes(int node, std::vector<int>& nodes) const override { nodes.push_back(node); }
   void addRange(ForceContext& ctx, int begin, int end) const override;
 

@@ -17,7 +17,7 @@ ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, 
   int largest = -1, most = 0;
   for (const Effect* e : effects_) {
     if (e->splitItems() > 0) {
-      if (e->splitItems() > most) most = e->splitItems(), largest = int(split_.size());
+      if (e->splitDecides() && e->splitItems() > most) most = e->splitItems(), largest = int(split_.size());
       split_.push_back(e);
       if (e->prepareItems() > 0) prepare_.push_back(e);
     } else {

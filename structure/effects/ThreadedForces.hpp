@@ -40,8 +40,8 @@ struct Nodes;
 
 class ThreadedForces {
  public:
-  /// One share (serial: evaluateEffects) if threads ≤ 1, without OpenMP, or when no split effect has
-  /// kMinParallelItems elements (effects/Threads.hpp).
+  /// One share (serial: evaluateEffects) if threads ≤ 1, without OpenMP, or when no split effect that
+  /// decides (Effect::splitDecides) has kMinParallelItems elements (effects/Threads.hpp).
   ThreadedForces(std::vector<const Effect*> effects, int threads, int nodes);
 
   int shares() const { return int(shares_.size()); }

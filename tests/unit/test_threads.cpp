@@ -343,6 +343,25 @@ TEST(Threads, BendingEqualsSerial) {
   }
 }
 
+// Gravity splits over the nodes when something else is threaded, but its m g per node is too cheap to be
+// worth waking threads for: a model with many nodes and a small membrane or cable set stays serial.
+TEST(Threads, GravityAloneDoesNotThread) {
+  if (!threadsAvailable()) GTEST_SKIP() << "built without OpenMP";
+  const Scene s = rippledSheet(aboveThreshold(), "", "  gravity: {acceleration: [0, 0, -9.81]}");
+  const Model& m = *s.model;
+  // Gravity over the nodes' masses repeated past the threshold on its own.
+  std::vector<double> mass = m.nodes.mass;
+  while (int(mass.size()) < kMinParallelItems)
+    mass.insert(mass.end(), m.nodes.mass.begin(), m.nodes.mass.end());
+  const Gravity many(mass, {0, 0, -9.81}, TimeFunction::constant());
+  ASSERT_GE(many.splitItems(), kMinParallelItems);
+  EXPECT_TRUE(ThreadedForces({&many}, 2, many.splitItems()).serial());
+  // With the membranes it splits: the scene's evaluation threads, gravity among the split effects.
+  const ThreadedForces all(s.effectList(), 2, m.nodes.count);
+  EXPECT_EQ(all.shares(), 2);
+  EXPECT_EQ(all.splitElements(), 2L * m.membranes.count + m.nodes.count);  // membranes, pressure, gravity
+}
+
 // Whole central-difference steps (threaded forces and node sweep in one parallel region): positions,
 // velocities and the energy ledger after 40 steps agree with the serial run to round-off, on 2, 3 and 5
 // threads.

@@ -48,7 +48,7 @@ class Effect {
   /// A per-item pass that every range's addRange needs done for ALL items first (e.g. the bending's hinge
   /// angles, which each triangle's curvature reads): items [begin, end) at ctx.x into the effect's own
   /// scratch, no node forces. ThreadedForces splits it over the threads, then waits at a barrier; addForces()
-  /// runs prepareRange(ctx, 0, prepareItems()) before its elements. 0: none.
+  /// does that work for all items itself before its elements. 0: none.
   virtual int prepareItems() const { return 0; }
   virtual void prepareRange(const ForceContext& /*ctx*/, int /*begin*/, int /*end*/) const {}
 };

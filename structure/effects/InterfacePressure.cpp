@@ -1,7 +1,5 @@
 #include "structure/effects/InterfacePressure.hpp"
 
-#include <algorithm>
-#include <limits>
 #include <stdexcept>
 #include <unordered_map>
 

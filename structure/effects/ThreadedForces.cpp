@@ -13,7 +13,7 @@
 namespace fsi::structure {
 
 ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, int nodes)
-    : effects_(std::move(effects)), nodes_(nodes) {
+    : effects_(std::move(effects)) {
   int largest = -1, most = 0;
   for (const Effect* e : effects_) {
     if (e->splitItems() > 0) {

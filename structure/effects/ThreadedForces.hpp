@@ -86,7 +86,6 @@ class ThreadedForces {
   std::vector<const Effect*> effects_;
   std::vector<const Effect*> split_, whole_;
   std::vector<const Effect*> prepare_;  ///< split effects with a per-item pass before their elements
-  int nodes_ = 0;
   std::vector<Share> shares_;
   double wholeDt_ = 0, wholeEnergy_ = 0;
 };

@@ -46,6 +46,9 @@ RESOLUTIONS = {
     # resolved one level finer while the cells the canopy moves stay those of the coarse mesh (the medium
     # mesh's thinner cells there fold as the canopy moves; docs/RAMAIR.md). The same step as coarse.
     "wake": {"surface": (4, 5), "features": 5, "near": 4, "wake": 3},
+    # One level finer than medium at the skin and its edges (cells of 1/128 chord), the boxes as medium's: the
+    # rigid wing's third mesh of the validation ladder (docs/AERODYNAMICS.md); not for the moving canopy.
+    "fine": {"surface": (6, 7), "features": 7, "near": 4, "wake": 3},
 }
 
 # motion_diffusivity: the displacementLaplacian's diffusivity (OpenFOAM's names)
@@ -145,6 +148,12 @@ SETTINGS = {
                     "yes: snappyHexMesh meshes the half y >= 0 and mirrorMesh adds its mirror image, so the left and "
                     "right cells are exact mirror images (a whole snapped mesh is not mirror-symmetric: its cells "
                     "at the right trailing edge were the ones that folded; docs/RAMAIR.md)"),
+    "solver": (["pimple", "simple"], "pimple", None, None,
+               "pimple: pimpleFoam, pseudo-transient at `courant`; simple: simpleFoam, steady, `steps` iterations "
+               "(rigid wing only: a steady answer for steady flow, docs/AERODYNAMICS.md)"),
+    "half_domain": (["no", "yes"], "no", None, None,
+                    "yes: the half y >= 0 with a symmetry plane at y = 0 (rigid wing in symmetric flow only: half "
+                    "the cells for the same answer; the coefficients are the whole wing's)"),
     "upstream": ("float", 8.0, 2.0, 100.0, "domain: chords upstream of the wing"),
     "downstream": ("float", 16.0, 3.0, 200.0, "domain: chords downstream of the wing"),
     "lateral": ("float", 8.0, 2.0, 100.0, "domain: chords beyond the tips, above and below the wing"),
@@ -211,7 +220,14 @@ def read_settings(path):
         line = where.get("rigid_outer", where.get("rigid_inner"))
         raise InputError(f"{path}:{line}: rigid_inner ({values['rigid_inner']:g} chords) must be below rigid_outer "
                          f"({values['rigid_outer']:g}): the rigid part fades out between the two")
+    if values["half_domain"] == "yes" and values["mirror_mesh"] == "yes":
+        raise InputError(f"{path}:{where['half_domain']}: half_domain and mirror_mesh exclude each other (mirror_mesh "
+                         "meshes the half and mirrors it; half_domain keeps the half with a symmetry plane)")
     if values["coupled"] == "yes":
+        for key in ("solver", "half_domain"):
+            if key in where and values[key] != SETTINGS[key][1]:
+                raise InputError(f"{path}:{where[key]}: {key} {values[key]} is for the rigid wing (coupled no): the "
+                                 "coupled canopy moves in time and need not stay symmetric")
         if values["mesh_motion"] not in ("laplacian", "rigidfit"):
             raise InputError(f"{path}:{where['mesh_motion']}: mesh_motion none with coupled yes: the coupled wing "
                              "moves the mesh (mesh_motion laplacian or auto)")
@@ -361,13 +377,18 @@ def domain(geo, s, h0):
     return bmin, bmax, n
 
 
-def write_block_mesh(sysd, src, bmin, bmax, n, mirror):
+def write_block_mesh(sysd, src, bmin, bmax, n, mirror, half=False):
     """system/blockMeshDict: the background box bmin..bmax in n cells (mirror: the half y >= 0 with the plane
-    y = 0 as the patch `mirror`)."""
+    y = 0 as the patch `mirror`; half: the same half with that plane a symmetryPlane)."""
     verts = [(bmin[0], bmin[1], bmin[2]), (bmax[0], bmin[1], bmin[2]), (bmax[0], bmax[1], bmin[2]),
              (bmin[0], bmax[1], bmin[2]), (bmin[0], bmin[1], bmax[2]), (bmax[0], bmin[1], bmax[2]),
              (bmax[0], bmax[1], bmax[2]), (bmin[0], bmax[1], bmax[2])]
-    if mirror:
+    if half:
+        what = ("// The half y >= 0 of the background box around the wing, cells of one chord; `mirror` (y = 0) is\n"
+                "// the symmetry plane of the rigid wing's symmetric flow, every other outer face the far field.\n")
+        patches = ("  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (3 7 6 2)); }\n"
+                   "  mirror { type symmetryPlane; faces ((0 1 5 4)); }\n")
+    elif mirror:
         what = ("// The half y >= 0 of the background box around the wing, cells of one chord; `mirror` (y = 0)\n"
                 "// disappears when mirrorMesh adds the other half, every other outer face is the far field.\n")
         patches = ("  farfield { type patch; faces ((0 3 2 1) (4 5 6 7) (0 4 7 3) (1 2 6 5) (3 7 6 2)); }\n"
@@ -407,7 +428,8 @@ def write_case(settings_path, stl_path, case):
     bmin, bmax, n = domain(geo, s, d["h0"])
     sysd, cons = os.path.join(case, "system"), os.path.join(case, "constant")
     mirror = s["mirror_mesh"] == "yes"
-    if mirror:
+    half = s["half_domain"] == "yes"
+    if mirror or half:
         # The half y >= 0, its far side as far out as the whole box's; mirrorMesh adds the other half.
         span = hi[1] - lo[1]
         if abs(hi[1] + lo[1]) > 1e-6 * span:
@@ -421,7 +443,7 @@ def write_case(settings_path, stl_path, case):
               "// The half mesh's mirror image about y = 0; the faces on the plane become internal faces.\n"
               "planeType pointAndNormal;\npointAndNormalDict { point (0 0 0); normal (0 1 0); }\n"
               "planeTolerance 1e-6;\n")
-    write_block_mesh(sysd, src, bmin, bmax, n, mirror)
+    write_block_mesh(sysd, src, bmin, bmax, n, mirror, half)
 
     write(os.path.join(sysd, "surfaceFeatureExtractDict"), "dictionary", "surfaceFeatureExtractDict", src,
           "// Sharp edges of the skin (trailing edge, rib seams at the tips) for snappyHexMesh's feature snapping.\n"
@@ -522,8 +544,9 @@ mergeTolerance 1e-6;
         motion = "// Rigid wing: no mesh motion (mesh_motion laplacian in the settings moves it).\ndynamicFvMesh staticFvMesh;\n"
     write(os.path.join(cons, "dynamicMeshDict"), "dictionary", "dynamicMeshDict", src, motion)
 
+    steady = s["solver"] == "simple"
     write(os.path.join(sysd, "fvSchemes"), "dictionary", "fvSchemes", src, f"""\
-ddtSchemes {{ default Euler; }}
+ddtSchemes {{ default {"steadyState" if steady else "Euler"}; }}
 gradSchemes {{ default Gauss linear; grad(U) cellLimited Gauss linear 1; }}
 divSchemes
 {{
@@ -538,6 +561,28 @@ interpolationSchemes {{ default linear; }}
 snGradSchemes {{ default limited corrected 0.33; }}
 wallDist {{ method meshWave; }}
 """)
+    if steady:
+        algorithm = f"""\
+// Steady (solver simple): SIMPLE with under-relaxation, {s['steps']} iterations; the residuals and the forces'
+// spread over the last fifth of the iterations say whether it converged (summary.json).
+SIMPLE
+{{
+  nNonOrthogonalCorrectors 1; consistent no;
+  residualControl {{ p 1e-6; U 1e-7; "(k|omega)" 1e-7; }}
+}}
+relaxationFactors {{ fields {{ p 0.3; }} equations {{ U 0.7; k 0.7; omega 0.7; }} }}
+"""
+    else:
+        algorithm = f"""\
+// Pseudo-transient: large steps (Courant {s['courant']:g} at the wing), outer correctors under-relaxed, the
+// final corrector of each step not relaxed.
+PIMPLE
+{{
+  momentumPredictor yes; nOuterCorrectors {s['outer_correctors']}; nCorrectors 1; nNonOrthogonalCorrectors 1;
+  correctPhi {s['correct_phi']};
+}}
+relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }} }}
+"""
     write(os.path.join(sysd, "fvSolution"), "dictionary", "fvSolution", src, f"""\
 solvers
 {{
@@ -548,15 +593,7 @@ solvers
   "(U|k|omega)" {{ solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0.1; }}
   "(U|k|omega)Final" {{ solver smoothSolver; smoother symGaussSeidel; tolerance 1e-8; relTol 0; }}
 }}
-// Pseudo-transient: large steps (Courant {s['courant']:g} at the wing), outer correctors under-relaxed, the
-// final corrector of each step not relaxed.
-PIMPLE
-{{
-  momentumPredictor yes; nOuterCorrectors {s['outer_correctors']}; nCorrectors 1; nNonOrthogonalCorrectors 1;
-  correctPhi {s['correct_phi']};
-}}
-relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }} }}
-""")
+""" + algorithm)
 
     coupling_libs, coupling = "", ""
     if s["coupled"] == "yes":
@@ -588,29 +625,47 @@ relaxationFactors {{ fields {{ p 0.5; }} equations {{ U 0.8; k 0.8; omega 0.8; }
     gapCorrection {s['gap_correction']}; smoothingLength {s['smoothing_length']:.9g};
     conserveMoment {s['conserve_moment']};{remesh}
   }}
+  // The wall shear stress on the wing (kinematic, like p) with the fields: with p the load on each face of
+  // the skin for the summary's spanwise lift distribution (ramair_wing.py)
+  wallShearStress
+  {{
+    type wallShearStress; libs ("libfieldFunctionObjects.so"); patches (wing); writeControl writeTime; log false;
+  }}
 """
     # A run that stops for new meshes restarts from a time directory's name: 12 digits keep the restarted
     # times on the steps' (8 drifted by 5e-9 s per restart until OpenFOAM lengthened the names itself).
     precision = 12 if s["remesh_below"] > 0 else 8
 
+    # half_domain: the half wing's forces over half the reference area are the whole wing's coefficients
+    aref = d["Aref"] / 2 if half else d["Aref"]
+    y_plus = ("  // y+ of the first cell centre on the wing (wall functions: valid for about 30-300), written with the\n"
+              "  // fields and as min/max/mean per step in postProcessing/yPlus\n"
+              "  yPlus { type yPlus; libs (\"libfieldFunctionObjects.so\"); writeControl writeTime; log false; }\n"
+              if s["model"] == "kOmegaSST" else "")
+
     def control_dict(libs, fsi, steps, end, every):
+        if steady:
+            timing = (f"application simpleFoam;\n// steady: {steps} SIMPLE iterations (time = iteration)\n"
+                      f"startFrom latestTime; startTime 0; stopAt endTime; endTime {steps}; deltaT 1;")
+        else:
+            timing = (f"application pimpleFoam;\n// deltaT = courant {s['courant']:g} * finest wing cell "
+                      f"{d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {steps} steps\n"
+                      f"startFrom latestTime; startTime 0; stopAt endTime; endTime {end:.9g}; deltaT {d['deltaT']:.9g};")
         return f"""\
-application pimpleFoam;
-// deltaT = courant {s['courant']:g} * finest wing cell {d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {steps} steps
-startFrom latestTime; startTime 0; stopAt endTime; endTime {end:.9g}; deltaT {d['deltaT']:.9g};
+{timing}
 writeControl timeStep; writeInterval {every}; purgeWrite 0; writeFormat ascii; writePrecision 10;
 writeCompression off; timeFormat general; timePrecision {precision}; runTimeModifiable false; adjustTimeStep no;
 {libs}functions
 {{
-{fsi}  // CL, CD about the free stream; reference area = the wing's area projected on the plane normal to the lift
-  // direction ({d['Aref']:.6g} m^2), reference length = the centre chord ({c:.6g} m), moments about its
-  // quarter chord.
+{fsi}{y_plus}  // CL, CD about the free stream; reference area = the wing's area projected on the plane normal to the lift
+  // direction ({d['Aref']:.6g} m^2{"; the half wing's: half of it" if half else ""}), reference length = the centre
+  // chord ({c:.6g} m), moments about its quarter chord.
   forceCoeffs
   {{
     type forceCoeffs; libs ("libforces.so"); writeControl timeStep; writeInterval 1; log false;
     patches (wing); rho rhoInf; rhoInf {s['rho']:.9g};
     liftDir {v3(d['lift_dir'])}; dragDir {v3(d['flow_dir'])}; pitchAxis (0 1 0);
-    CofR {v3(d['CofR'])}; magUInf {s['speed']:.9g}; lRef {c:.9g}; Aref {d['Aref']:.9g};
+    CofR {v3(d['CofR'])}; magUInf {s['speed']:.9g}; lRef {c:.9g}; Aref {aref:.9g};
   }}
   forces
   {{
@@ -653,6 +708,8 @@ def write_fields(case):
     src = os.path.basename(rec["settings_file"])
     z = os.path.join(case, "0")
     u = v3(d["u_inf"])
+    # half_domain: every field's entry for the symmetry plane y = 0
+    sym = "  mirror { type symmetryPlane; }\n" if s.get("half_domain") == "yes" else ""
     write(os.path.join(z, "U"), "volVectorField", "U", src, f"""\
 dimensions [0 1 -1 0 0 0 0];
 internalField uniform {u};   // a uniform start: potentialFoam spiked at the sharp trailing edge
@@ -660,7 +717,7 @@ boundaryField
 {{
   farfield {{ type freestreamVelocity; freestreamValue uniform {u}; value uniform {u}; }}
   wing {{ type movingWallVelocity; value uniform (0 0 0); }}   // = noSlip while the wing is rigid
-}}
+{sym}}}
 """)
     write(os.path.join(z, "p"), "volScalarField", "p", src, """\
 dimensions [0 2 -2 0 0 0 0];   // kinematic
@@ -669,7 +726,7 @@ boundaryField
 {
   farfield { type freestreamPressure; freestreamValue uniform 0; value uniform 0; }
   wing { type zeroGradient; }
-}
+""" + sym + """}
 """)
     wing = ("wing { type fsiInterfaceDisplacement; value uniform (0 0 0); }   // the structure's displacement"
             if s["coupled"] == "yes" else
@@ -682,7 +739,7 @@ boundaryField
   """ + wing + """
   farfield { type fixedValue; value uniform (0 0 0); }
   "procBoundary.*" { type processor; value uniform (0 0 0); }
-}
+""" + sym + """}
 """)
     if s["model"] == "kOmegaSST":
         k, om = d["k_inf"], d["omega_inf"]
@@ -696,7 +753,7 @@ boundaryField
 {{
   farfield {{ type inletOutlet; inletValue uniform {val:.9g}; value uniform {val:.9g}; }}
   wing {{ type {wall}; }}
-}}
+{sym}}}
 """)
         write(os.path.join(z, "nut"), "volScalarField", "nut", src, """\
 dimensions [0 2 -1 0 0 0 0];
@@ -705,7 +762,7 @@ boundaryField
 {
   farfield { type calculated; value uniform 0; }
   wing { type nutUSpaldingWallFunction; value uniform 0; }   // no prism layers: y+ 75-3000 (docs/RAMAIR.md)
-}
+""" + sym + """}
 """)
 
 
@@ -955,7 +1012,7 @@ def summary(case):
                          "span_projected_m": d["span_projected"], "Re": d["Re"], "q_Pa": d["q"]},
            "mesh": check_mesh(case)}
     area, nf = patch_area(case, "wing")
-    stl = rec["wing"]["area"]
+    stl = rec["wing"]["area"] / (2 if s.get("half_domain") == "yes" else 1)  # half_domain: the half wing
     out["mesh"].update({"wing_faces": nf, "wing_patch_area": area, "stl_area": stl,
                         "area_relative_difference": (area - stl) / stl})
     est = {"formula": "Helmbold: CL = a0 a / (sqrt(1 + (a0/(pi AR))^2) + a0/(pi AR)), a0 = 2 pi, "
@@ -984,7 +1041,7 @@ def summary(case):
                        "CL_spread_last_fifth": spread(hist["Cl"]), "CD_spread_last_fifth": spread(hist["Cd"]),
                        "finite": finite, "CL_over_estimate": hist["Cl"][-1] / d["CL_helmbold"],
                        "history": {"CL": hist["Cl"], "CD": hist["Cd"]}}
-        for log in ("log.pimpleFoam",):
+        for log in ("log.pimpleFoam", "log.simpleFoam"):
             p = os.path.join(case, log)
             if os.path.exists(p):
                 with open(p) as f:

@@ -53,6 +53,10 @@ bad "smoothing_length -0.01" "outside"
 bad "rigid_outer 3" "rigid_outer needs mesh_motion rigidfit"
 bad $'rigid_outer 1\nmesh_motion rigidfit\nrigid_inner 2' "must be below rigid_outer"
 bad "carry_after 20" "carry_after needs equilibrium_start carry"
+bad "solver steady" "pimple, simple"
+bad $'solver simple\ncoupled yes' "is for the rigid wing"
+bad $'half_domain yes\ncoupled yes' "is for the rigid wing"
+bad $'half_domain yes\nmirror_mesh yes' "exclude each other"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 

@@ -1,0 +1,278 @@
+#!/usr/bin/python3
+"""Rung 2 of the fluid validation ladder (issue 33, docs/AERODYNAMICS.md): the rigid ram-air wing of
+cases/coupled/ramair-kt in steady symmetric flow, CL, CD and Cm against the angle of attack, on several meshes,
+for the wing without arc, with the arc, and with the bulged cells the coupled canopy flies.
+
+Every point is a copy of the case (its tracked files) in OUT/<variant>/<level>/a<alpha>, run by its own Allrun
+with a settings file written here: kOmegaSST at Re 1e6 as rans.settings, `solver simple` (steady: simpleFoam),
+`half_domain yes` (the half y >= 0 with a symmetry plane), `resolution LEVEL`, `angle` = alpha - incidence.
+The structure.yaml of a variant changes only the generator's arc_radius (0: no arc) and the fluid's skin its
+bulge (stl_bulge). Each finished point is appended to the JSON at once, so a cut-off study keeps what it did.
+
+  /usr/bin/python3 studies/wing/wing_polar.py --variants flat,arc,bulged --levels coarse,medium \\
+      --alpha=-2,2,6,10 [--out DIR] [--iterations N] [--json docs/data/wing_polar.json] [--collect]
+  /usr/bin/python3 studies/wing/wing_polar.py --plot [--json ...]      (docs/img/wing_polar.png)
+
+The reference: Helmbold's low-aspect-ratio lifting line with a0 = 2 pi per radian, on the aspect ratio of the
+projected planform, times the arc factor (1 + sin(2 eps)/(2 eps))/2 with eps the half-arc angle b/(2R) for the
+arced variants (ram-air-data.md); the zero-lift angle of the section from rung 1 (docs/AERODYNAMICS.md).
+"""
+import argparse
+import datetime
+import json
+import math
+import os
+import platform
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+CASE = ROOT / "cases/coupled/ramair-kt"
+ENV = ROOT / "build/share/fsi/fsi-env.sh"
+INCIDENCE = 6.0  # structure.yaml's generator incidence [deg]: the centre section's chord to the x axis
+
+# variant: (generator changes, stl_bulge, what it is)
+VARIANTS = {
+    "flat": ({"arc_radius": 0}, 0.0, "no arc (flat span), flat panels between the ribs"),
+    "arc": ({}, 0.0, "the arc R/b = 1, flat panels"),
+    "bulged": ({}, 0.25, "the arc R/b = 1, the cells bulged by a quarter of their width (the coupled canopy's skin)"),
+}
+
+SETTINGS = """# written by studies/wing/wing_polar.py: rung 2, the rigid wing in steady symmetric flow
+speed 15
+nu 1.5e-5
+rho 1.225
+model kOmegaSST
+turbulence_intensity 0.005
+viscosity_ratio 10
+mesh_motion none
+solver simple
+half_domain yes
+"""
+
+
+def structure_with(text, changes):
+    """structure.yaml with generator parameters replaced (`name: value` inside the generator's mapping)."""
+    for key, value in changes.items():
+        new, n = re.subn(rf"\b{re.escape(key)}: [0-9.e+-]+", f"{key}: {value}", text)
+        if n != 1:
+            sys.exit(f"wing_polar: {CASE}/structure.yaml has {n} '{key}:' entries, expected 1")
+        text = new
+    return text
+
+
+def tracked_case_files():
+    out = subprocess.run(["git", "-C", str(ROOT), "ls-files", "cases/coupled/ramair-kt"], capture_output=True,
+                         text=True, check=True).stdout.split()
+    if not out:
+        sys.exit("wing_polar: no tracked files in cases/coupled/ramair-kt")
+    return [ROOT / f for f in out]
+
+
+def y_plus(case):
+    """min, max and area-weighted mean y+ on the wing at the last iteration (postProcessing/yPlus)."""
+    base = Path(case) / "postProcessing" / "yPlus"
+    files = sorted(base.glob("*/yPlus.dat"))
+    if not files:
+        return None
+    last = None
+    for line in files[-1].read_text().splitlines():
+        w = line.split()
+        if w and not line.startswith("#") and len(w) >= 5 and w[1] == "wing":
+            last = w
+    return None if last is None else {"min": float(last[2]), "max": float(last[3]), "mean": float(last[4])}
+
+
+def residuals(case, log="log.simpleFoam"):
+    """The last iteration's initial residuals of Ux, p, k, omega and whether SIMPLE met its residualControl."""
+    text = (Path(case) / log).read_text(errors="replace")
+    res = {}
+    for m in re.finditer(r"Solving for (\w+), Initial residual = ([\d.eE+-]+)", text[-20000:]):
+        res[m.group(1)] = float(m.group(2))
+    return res, "SIMPLE solution converged" in text
+
+
+def run_point(out, variant, level, alpha, iterations):
+    changes, bulge, _ = VARIANTS[variant]
+    case = Path(out) / variant / level / f"a{alpha:g}"
+    if (case / "summary.json").exists():
+        return case, 0.0
+    if case.exists():
+        subprocess.run(["rm", "-rf", str(case)], check=True)
+    case.mkdir(parents=True)
+    for f in tracked_case_files():
+        text = f.read_bytes()
+        if f.name == "structure.yaml":
+            text = structure_with(text.decode(), changes).encode()
+        (case / f.name).write_bytes(text)
+        os.chmod(case / f.name, f.stat().st_mode)
+    (case / "polar.settings").write_text(
+        SETTINGS + f"resolution {level}\nangle {alpha - INCIDENCE:g}   # alpha {alpha:g} deg at the centre chord\n"
+        f"steps {iterations}\nstl_bulge {bulge:g}\n")
+    t0 = time.time()
+    # The environment from the build tree; the arguments are a list, nothing here passes through a shell but
+    # the fixed `source` line.
+    cmd = ["bash", "-c", f'. "{ENV}" && exec ./Allrun -settings polar.settings']
+    # the log beside the case (Allrun refuses a folder with log.* files in it)
+    with open(case.parent / f"{case.name}.log", "w") as log:
+        rc = subprocess.run(cmd, cwd=case, stdout=log, stderr=subprocess.STDOUT).returncode
+    if rc != 0:
+        print(f"wing_polar: {case} failed (exit {rc}); see {case}.log", file=sys.stderr)
+        return None, time.time() - t0
+    return case, time.time() - t0
+
+
+def collect(case, variant, level, alpha, wall):
+    s = json.loads((Path(case) / "summary.json").read_text())
+    fl, rec = s["flow"], json.loads((Path(case) / "constant/fluidSettings.json").read_text())
+    res, converged = residuals(case)
+    d = rec["derived"]
+    return {"variant": variant, "level": level, "alpha_deg": alpha, "CL": fl["CL"], "CD": fl["CD"],
+            "Cm": fl["CmPitch"], "CL_spread_last_fifth": fl["CL_spread_last_fifth"],
+            "CD_spread_last_fifth": fl["CD_spread_last_fifth"], "iterations": fl["steps"],
+            "residuals": res, "residual_control_met": converged, "cells": s["mesh"]["cells"],
+            "cells_whole_wing": 2 * s["mesh"]["cells"], "y_plus": y_plus(case), "wall_s": round(wall, 1),
+            "Aref_m2": d["Aref"], "aspect_ratio": d["aspect_ratio"], "span_projected_m": d["span_projected"],
+            "wall_cell_m": d["h_wing"]}
+
+
+def store(path, rows):
+    data = json.loads(Path(path).read_text()) if Path(path).exists() else {}
+    old = data.get("points", [])
+    key = lambda r: (r["variant"], r["level"], r["alpha_deg"])
+    new = {key(r): r for r in old}
+    for r in rows:
+        new[key(r)] = r
+    data.update({
+        "what": "rigid ram-air wing (cases/coupled/ramair-kt's canopy), steady kOmegaSST, Re 1e6, half domain with "
+                "a symmetry plane; CL, CD, Cm on the projected planform area of the whole wing (Aref_m2), Cm about "
+                "the centre chord's quarter point, pitch up positive",
+        "variants": {k: v[2] for k, v in VARIANTS.items()},
+        "alpha_is": "the centre section's chord line to the free stream [deg] (incidence 6 + inflow angle)",
+        "command": "/usr/bin/python3 studies/wing/wing_polar.py " + " ".join(sys.argv[1:]),
+        "machine": f"{platform.node()} ({os.cpu_count()} cores)", "date": datetime.date.today().isoformat(),
+        "points": sorted(new.values(), key=lambda r: (r["variant"], r["level"], r["alpha_deg"]))})
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_text(json.dumps(data, indent=1) + "\n")
+
+
+def helmbold(ar, arc_half_angle):
+    a0 = 2 * math.pi
+    k = a0 / (math.pi * ar)
+    slope = a0 / (math.sqrt(1 + k * k) + k)
+    if arc_half_angle > 0:
+        e = arc_half_angle
+        slope *= 0.5 * (1 + math.sin(2 * e) / (2 * e))
+    return slope
+
+
+def fit_slope(points):
+    """Least-squares CL = a (alpha - alpha0) over the points; (a per rad, alpha0 deg)."""
+    n = len(points)
+    if n < 2:
+        return None, None
+    xs = [math.radians(p["alpha_deg"]) for p in points]
+    ys = [p["CL"] for p in points]
+    mx, my = sum(xs) / n, sum(ys) / n
+    sxx = sum((x - mx) ** 2 for x in xs)
+    a = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+    return a, math.degrees(mx - my / a)
+
+
+def plot(path, png):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    data = json.loads(Path(path).read_text())
+    pts = data["points"]
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
+    styles = {"coarse": "o-", "medium": "s--", "fine": "^:"}
+    colours = {"flat": "C0", "arc": "C1", "bulged": "C3"}
+    for v in VARIANTS:
+        for lvl in styles:
+            sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl], key=lambda p: p["alpha_deg"])
+            if not sel:
+                continue
+            lab = f"{v}, {lvl}"
+            a = [p["alpha_deg"] for p in sel]
+            ax[0].plot(a, [p["CL"] for p in sel], styles[lvl], color=colours[v], label=lab)
+            ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], styles[lvl], color=colours[v], label=lab)
+            ax[2].plot(a, [p["Cm"] for p in sel], styles[lvl], color=colours[v], label=lab)
+    ar = next((p["aspect_ratio"] for p in pts if p["variant"] == "flat"), 3.0)
+    alpha0 = data.get("alpha0_section_deg", -4.15)
+    al = [-4 + 0.5 * i for i in range(33)]
+    for name, eps, c in (("Helmbold, no arc", 0.0, "C0"), ("Helmbold x arc factor", 0.5, "C1")):
+        a = helmbold(ar, eps)
+        ax[0].plot(al, [a * math.radians(x - alpha0) for x in al], ":", color=c, lw=1, label=f"{name} ({a:.2f}/rad)")
+    ax[0].set(xlabel="alpha, centre chord [deg]", ylabel="CL (projected area)", title="lift")
+    ax[1].set(xlabel="CD", ylabel="CL", title="drag polar")
+    ax[2].set(xlabel="alpha [deg]", ylabel="Cm (quarter chord)", title="pitching moment")
+    for x in ax:
+        x.grid(alpha=0.3)
+    ax[0].legend(fontsize=7)
+    fig.suptitle("Rung 2: the rigid ram-air wing, steady kOmegaSST, Re 1e6 (studies/wing/wing_polar.py)")
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    print(f"wing_polar: {png}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--variants", default="flat,arc,bulged")
+    ap.add_argument("--levels", default="coarse")
+    ap.add_argument("--alpha", default="-2,2,6,10", help="centre-chord angles of attack [deg]")
+    ap.add_argument("--iterations", type=int, default=1500)
+    ap.add_argument("--out", default=str(ROOT / "studies-out/wing"))
+    ap.add_argument("--json", default=str(ROOT / "docs/data/wing_polar.json"))
+    ap.add_argument("--png", default=str(ROOT / "docs/img/wing_polar.png"))
+    ap.add_argument("--collect", action="store_true", help="read finished points in OUT, run nothing")
+    ap.add_argument("--plot", action="store_true", help="only the plot from the JSON")
+    a = ap.parse_args()
+    if a.plot:
+        plot(a.json, a.png)
+        return 0
+    variants = a.variants.split(",")
+    for v in variants:
+        if v not in VARIANTS:
+            ap.error(f"--variants: unknown '{v}' (valid: {', '.join(VARIANTS)})")
+    levels = a.levels.split(",")
+    for lvl in levels:
+        if lvl not in ("coarse", "medium", "fine", "wake"):
+            ap.error(f"--levels: unknown '{lvl}' (valid: coarse, medium, fine, wake)")
+    try:
+        alphas = [float(x) for x in a.alpha.split(",")]
+    except ValueError:
+        ap.error(f"--alpha: '{a.alpha}' is not a comma-separated list of numbers")
+    failed = 0
+    for lvl in levels:
+        for v in variants:
+            for al in alphas:
+                case = Path(a.out) / v / lvl / f"a{al:g}"
+                if a.collect:
+                    if not (case / "summary.json").exists():
+                        continue
+                    wall = 0.0
+                else:
+                    print(f"wing_polar: {v} {lvl} alpha {al:g} ...", flush=True)
+                    case, wall = run_point(a.out, v, lvl, al, a.iterations)
+                    if case is None:
+                        failed += 1
+                        continue
+                row = collect(case, v, lvl, al, wall)
+                if a.collect:
+                    old = json.loads(Path(a.json).read_text()) if Path(a.json).exists() else {"points": []}
+                    prev = [p for p in old["points"] if (p["variant"], p["level"], p["alpha_deg"]) == (v, lvl, al)]
+                    row["wall_s"] = prev[0]["wall_s"] if prev else None
+                store(a.json, [row])
+                print(f"  CL {row['CL']:.4f} CD {row['CD']:.4f} Cm {row['Cm']:.4f}, {row['cells']} cells, "
+                      f"y+ {row['y_plus']}, spread CL {100 * row['CL_spread_last_fifth']:.2f} %, {wall:.0f} s",
+                      flush=True)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -95,7 +95,7 @@ def residuals(case, log="log.simpleFoam"):
     return res, "SIMPLE solution converged" in text
 
 
-def run_point(out, variant, level, alpha, iterations):
+def run_point(out, variant, level, alpha, iterations, env):
     changes, bulge, _ = VARIANTS[variant]
     case = Path(out) / variant / level / f"a{alpha:g}"
     if (case / "summary.json").exists():
@@ -113,9 +113,9 @@ def run_point(out, variant, level, alpha, iterations):
         SETTINGS + f"resolution {level}\nangle {alpha - INCIDENCE:g}   # alpha {alpha:g} deg at the centre chord\n"
         f"steps {iterations}\nstl_bulge {bulge:g}\n")
     t0 = time.time()
-    # The environment from the build tree; the arguments are a list, nothing here passes through a shell but
-    # the fixed `source` line.
-    cmd = ["bash", "-c", f'. "{ENV}" && exec ./Allrun -settings polar.settings']
+    # The environment of the build (--env); the arguments are a list, nothing here passes through a shell but
+    # the fixed `source` line (the file's path is its $0).
+    cmd = ["bash", "-c", '. "$0" && exec ./Allrun -settings polar.settings', str(env)]
     # the log beside the case (Allrun refuses a folder with log.* files in it)
     with open(case.parent / f"{case.name}.log", "w") as log:
         rc = subprocess.run(cmd, cwd=case, stdout=log, stderr=subprocess.STDOUT).returncode
@@ -133,7 +133,11 @@ def collect(case, variant, level, alpha, wall):
     return {"variant": variant, "level": level, "alpha_deg": alpha, "CL": fl["CL"], "CD": fl["CD"],
             "Cm": fl["CmPitch"], "CL_spread_last_fifth": fl["CL_spread_last_fifth"],
             "CD_spread_last_fifth": fl["CD_spread_last_fifth"], "iterations": fl["steps"],
-            "residuals": res, "residual_control_met": converged, "cells": s["mesh"]["cells"],
+            "residuals": res, "residual_control_met": converged,
+            # steady: SIMPLE met its residual control, or the forces stopped moving (0.1 % over the last fifth
+            # of the iterations) with the pressure residual below 1e-4
+            "converged": converged or (fl["CL_spread_last_fifth"] < 1e-3 and fl["CD_spread_last_fifth"] < 1e-3
+                                       and res.get("p", 1.0) < 1e-4), "cells": s["mesh"]["cells"],
             "cells_whole_wing": 2 * s["mesh"]["cells"], "y_plus": y_plus(case), "wall_s": round(wall, 1),
             "Aref_m2": d["Aref"], "aspect_ratio": d["aspect_ratio"], "span_projected_m": d["span_projected"],
             "wall_cell_m": d["h_wing"]}
@@ -229,6 +233,7 @@ def main():
     ap.add_argument("--out", default=str(ROOT / "studies-out/wing"))
     ap.add_argument("--json", default=str(ROOT / "docs/data/wing_polar.json"))
     ap.add_argument("--png", default=str(ROOT / "docs/img/wing_polar.png"))
+    ap.add_argument("--env", default=str(ENV), help="the build's or install's share/fsi/fsi-env.sh")
     ap.add_argument("--collect", action="store_true", help="read finished points in OUT, run nothing")
     ap.add_argument("--plot", action="store_true", help="only the plot from the JSON")
     a = ap.parse_args()
@@ -258,7 +263,7 @@ def main():
                     wall = 0.0
                 else:
                     print(f"wing_polar: {v} {lvl} alpha {al:g} ...", flush=True)
-                    case, wall = run_point(a.out, v, lvl, al, a.iterations)
+                    case, wall = run_point(a.out, v, lvl, al, a.iterations, a.env)
                     if case is None:
                         failed += 1
                         continue

@@ -129,7 +129,8 @@ def collect(name, out):
     return {
         "variant": name, "what": VARIANTS[name][0], "cells": m["cells"], "wing_faces": m["wing_faces"],
         "structure_triangles": triangles, "windows": c["windows"], "wall_s": float((d / "wall_seconds").read_text()),
-        "CL": c["CL"], "CD": c["CD"], "L_over_D": c["L_over_D"], "pitch_deg": c["pitch_deg"],
+        "CL": c["CL"], "CD": c["CD"], "L_over_D": c["L_over_D"],
+        "pitch_deg": c.get("mean_chord_pitch_deg", c.get("pitch_deg")),  # the probe's name before issue 33
         "balance": c["equilibrium_relative"], "stress_max_over_mean": c["stress_max_over_mean"],
         "skin_stress_max_Pa": c["skin_stress_max_Pa"], "line_tension_max_N": c["line_tension_max_N"],
     }

@@ -151,6 +151,10 @@ SETTINGS = {
     "solver": (["pimple", "simple"], "pimple", None, None,
                "pimple: pimpleFoam, pseudo-transient at `courant`; simple: simpleFoam, steady, `steps` iterations "
                "(rigid wing only: a steady answer for steady flow, docs/AERODYNAMICS.md)"),
+    "prism_layers": (["no", "yes"], "no", None, None,
+                     "yes: snappyHexMesh adds prism layers on the wing whose first cell centre sits at y+ of about "
+                     "50 (first layer 0.0022 chord, growing by 1.2 up to half the wall cell): the log-layer band the "
+                     "wall functions are valid in (docs/AERODYNAMICS.md rung 1); rigid wing only so far"),
     "half_domain": (["no", "yes"], "no", None, None,
                     "yes: the half y >= 0 with a symmetry plane at y = 0 (rigid wing in symmetric flow only: half "
                     "the cells for the same answer; the coefficients are the whole wing's)"),
@@ -224,7 +228,7 @@ def read_settings(path):
         raise InputError(f"{path}:{where['half_domain']}: half_domain and mirror_mesh exclude each other (mirror_mesh "
                          "meshes the half and mirrors it; half_domain keeps the half with a symmetry plane)")
     if values["coupled"] == "yes":
-        for key in ("solver", "half_domain"):
+        for key in ("solver", "half_domain", "prism_layers"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} {values[key]} is for the rigid wing (coupled no): the "
                                  "coupled canopy moves in time and need not stay symmetric")
@@ -462,10 +466,25 @@ def write_case(settings_path, stl_path, case):
     inside = [lo[0] - 2.0 * c + 0.1137 * d["h0"], 0.0733 * d["h0"], 0.5 * (lo[2] + hi[2]) + 0.1791 * d["h0"]]
     if not all(bmin[i] < inside[i] < bmax[i] for i in range(3)) or lo[0] <= inside[0] <= hi[0]:
         raise InputError("locationInMesh would not lie in the fluid: domain too small")
+    # prism_layers: the first layer's centre at y+ ~ 50 with flat-plate friction at Re_x = 5e5 on the chord
+    # (Cf = 0.027 Re_x^(-1/7), White): 0.0022 chord thick, growing by 1.2 until a layer reaches half the wall cell
+    if s["prism_layers"] == "yes":
+        first, growth = 0.0022 * c, 1.2
+        nlay = 0
+        while first * growth ** nlay < 0.5 * d["h_wing"]:
+            nlay += 1
+        layers_on = "true"
+        layer_spec = (f"// {nlay} layers, the first {first:.4g} m thick, growing by {growth:g}\n"
+                      f"  relativeSizes false; layers {{ wing {{ nSurfaceLayers {nlay}; }} }}; expansionRatio {growth:g};\n"
+                      f"  firstLayerThickness {first:.6g}; minThickness {0.5 * first:.6g};")
+    else:
+        layers_on = "false"
+        layer_spec = ("relativeSizes true; layers { }; expansionRatio 1.2; finalLayerThickness 0.5; "
+                      "minThickness 0.1;")
     write(os.path.join(sysd, "snappyHexMeshDict"), "dictionary", "snappyHexMeshDict", src, f"""\
 castellatedMesh true;
 snap true;
-addLayers false;   // prism layers changed the answer in the feasibility trial (docs/RAMAIR.md)
+addLayers {layers_on};   // prism_layers (docs/AERODYNAMICS.md): without them y+ is whatever the wall cell gives
 geometry
 {{
   wing.stl {{ type triSurfaceMesh; name wing; }}
@@ -495,7 +514,7 @@ snapControls
 }}
 addLayersControls
 {{
-  relativeSizes true; layers {{ }}; expansionRatio 1.2; finalLayerThickness 0.5; minThickness 0.1;
+  {layer_spec}
   nGrow 0; featureAngle 60; nRelaxIter 3; nSmoothSurfaceNormals 1; nSmoothNormals 3; nSmoothThickness 10;
   maxFaceThicknessRatio 0.5; maxThicknessToMedialRatio 0.3; minMedialAxisAngle 90; nBufferCellsNoExtrude 0;
   nLayerIter 50;
@@ -568,7 +587,7 @@ wallDist {{ method meshWave; }}
 SIMPLE
 {{
   nNonOrthogonalCorrectors 1; consistent no;
-  residualControl {{ p 1e-6; U 1e-7; "(k|omega)" 1e-7; }}
+  residualControl {{ p 1e-5; U 1e-6; "(k|omega)" 1e-6; }}   // initial residuals: stop when all are below
 }}
 relaxationFactors {{ fields {{ p 0.3; }} equations {{ U 0.7; k 0.7; omega 0.7; }} }}
 """
@@ -1017,6 +1036,8 @@ def summary(case):
                         "area_relative_difference": (area - stl) / stl})
     est = {"formula": "Helmbold: CL = a0 a / (sqrt(1 + (a0/(pi AR))^2) + a0/(pi AR)), a0 = 2 pi, "
                       "a = incidence + inflow angle - zero-lift angle",
+           "attitude": "design: the rigid design skin's centre chord and aspect ratio (a coupled run's estimate at "
+                       "the flown attitude: wing.estimate)",
            "incidence_deg": rec["wing"]["incidence_deg"], "alpha_effective_deg": d["alpha_effective_deg"],
            "CL": d["CL_helmbold"]}
     out["estimate"] = est
@@ -1056,6 +1077,13 @@ def summary(case):
         out["remeshes"] = remeshes(case)
         if s["brake_right"] > 0 and out["coupled"].get("windows"):
             out["coupled"]["brake"] = brake_response(case, s, d, out["remeshes"])
+        if out["coupled"].get("windows"):
+            sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+            import ramair_wing  # the wing engineer's numbers and plots (same folder)
+            try:
+                out["wing"] = ramair_wing.analyse(case, rec, out["coupled"])
+            except ramair_wing.InputError as e:
+                raise InputError(str(e))
     with open(os.path.join(case, "summary.json"), "w") as f:
         json.dump(out, f, indent=1)
     m = out["mesh"]
@@ -1074,12 +1102,14 @@ def summary(case):
               f"{c['iterations_max']}, {c['not_converged']} not converged); interface force fluid vs structure "
               f"{c['force_fluid_vs_structure_max_relative']:.1e}, moment "
               f"{c['moment_fluid_vs_structure_max_relative'] or float('nan'):.1e}")
-        print(f"  lift {c['lift_N']:.2f} N, drag {c['drag_N']:.2f} N, side {c['side_N']:.3f} N: CL {c['CL']:.4f}, "
-              f"CD {c['CD']:.4f}, L/D {c['L_over_D']:.2f}; pitch {c['pitch_deg']:.2f} deg")
+        print(f"  canopy: lift {c['lift_N']:.2f} N, drag {c['drag_N']:.2f} N, side {c['side_N']:.3f} N")
+        if "wing" in out:
+            import ramair_wing
+            for line in ramair_wing.headline(out["wing"]):
+                print(line)
         print(f"  anchor + toggles {v3(c['support_reaction_N'])} N vs applied {v3(c['applied_load_N'])} N "
-              f"(balance {c['equilibrium_relative']:.1e}); line drag {v3(c['line_drag_N'])} N")
-        print(f"  lines: max {c['line_tension_max_N']:.2f} N, left/right sums {c['lines_left_sum_N']:.2f} / "
-              f"{c['lines_right_sum_N']:.2f} N; skin stress mean {c['skin_stress_mean_Pa'] / 1e3:.1f} kPa, max "
+              f"(balance {c['equilibrium_relative']:.1e})")
+        print(f"  skin stress mean {c['skin_stress_mean_Pa'] / 1e3:.1f} kPa, max "
               f"{c['skin_stress_max_Pa'] / 1e3:.1f} kPa (ratio {c['stress_max_over_mean']:.2f})")
     for i, r in enumerate(out.get("remeshes", []), 1):
         m = r.get("mesh", {})
@@ -1099,8 +1129,8 @@ def summary(case):
         fl = out["flow"]
         print(f"flow: {fl['steps']} steps, CL {fl['CL']:.4f}, CD {fl['CD']:.4f}, L/D {fl['L_over_D']:.2f} "
               f"(spread over the last fifth: CL {100 * fl['CL_spread_last_fifth']:.2f} %, CD "
-              f"{100 * fl['CD_spread_last_fifth']:.2f} %); Helmbold CL {est['CL']:.3f} (AR {d['aspect_ratio']:.2f}, "
-              f"alpha {d['alpha_effective_deg']:.2f} deg from zero lift); "
+              f"{100 * fl['CD_spread_last_fifth']:.2f} %); Helmbold CL {est['CL']:.3f} at the design attitude (AR "
+              f"{d['aspect_ratio']:.2f}, alpha {d['alpha_effective_deg']:.2f} deg from zero lift); "
               f"{fl.get('wall_s_per_step', float('nan')):.3f} s per step")
 
 
@@ -1184,24 +1214,23 @@ def plot_brake(case, t, v, b):
 def write_table(case, out):
     """summary.md: the coupled run's answers in one table, with the references they are compared with."""
     c, e, d = out["coupled"], out["estimate"], out["reference"]
-    rows = [
-        ("windows (fluid steps), coupling", f"{c['windows']}, {c['iterations_mean']:.2f} iterations per window", ""),
-        ("lift, drag, side force [N]", f"{c['lift_N']:.2f}, {c['drag_N']:.2f}, {c['side_N']:.3f}", ""),
-        ("CL, CD, L/D", f"{c['CL']:.4f}, {c['CD']:.4f}, {c['L_over_D']:.2f}",
-         f"Helmbold (AR {d['aspect_ratio']:.2f}): CL {e['CL']:.3f}; ram-air wings L/D 3-6 with lines and payload"),
-        ("pitch of the centre chord [deg]", f"{c['pitch_deg']:.2f}", "design: the wing's incidence"),
+    rows = [("windows (fluid steps), coupling", f"{c['windows']}, {c['iterations_mean']:.2f} iterations per window", "")]
+    if "wing" in out:
+        import ramair_wing
+        rows += ramair_wing.table_rows(out["wing"])
+    else:  # a run without the structure's mesh and frames: the flow's force on the design area only
+        rows.append(("CL, CD of the canopy, L/D (design projected area)",
+                     f"{c['CL']:.4f}, {c['CD']:.4f}, {c['L_over_D']:.2f}", f"A = {d['Aref_m2']:.3f} m^2"))
+    rows += [
+        ("side force [N]", f"{c['side_N']:.3f}", "mirror symmetry: 0"),
         ("anchor + toggles reaction [N]", v3(c["support_reaction_N"]), "minus the applied load at equilibrium"),
         ("applied load (flow + ram pressure + line drag) [N]", v3(c["applied_load_N"]),
          f"balance {c['equilibrium_relative']:.1e}"),
-        ("line drag [N]", v3(c["line_drag_N"]), ""),
         ("supports' moments about the anchor (confluence point) [N m]", v3(c["anchor_moment_Nm"]), "x: roll, z: yaw"),
         ("interface force fluid vs structure (max over windows)", f"{c['force_fluid_vs_structure_max_relative']:.1e}",
          "conservative transfer: round-off"),
         ("interface moment fluid vs structure (max over windows)",
          f"{c['moment_fluid_vs_structure_max_relative'] or float('nan'):.1e}", "round-off with conserve_moment yes (default); the surfaces' gap with no"),
-        ("line tension max; left/right sums [N]",
-         f"{c['line_tension_max_N']:.2f}; {c['lines_left_sum_N']:.2f} / {c['lines_right_sum_N']:.2f}", "mirror symmetry"),
-        ("brake tension left/right [N]", f"{c['brake_tension_left_N']:.2f} / {c['brake_tension_right_N']:.2f}", ""),
         ("skin principal stress mean, max [kPa]", f"{c['skin_stress_mean_Pa'] / 1e3:.1f}, {c['skin_stress_max_Pa'] / 1e3:.1f}",
          "Kalro-Tezduyar: 758, 4337 (110, 629 lb/in^2)"),
         ("max / mean", f"{c['stress_max_over_mean']:.2f}", "Kalro-Tezduyar: 5.7"),
@@ -1252,13 +1281,19 @@ def coupled_summary(case, d):
     fluid = [last[f"F{c}_fluid"] for c in "xyz"]  # the flow's force on the wing (pressure + shear)
     applied = vec("applied_load_")  # everything applied to the structure: flow, ram pressure, line drag
     support = [a + b for a, b in zip(vec("anchor_force_"), vec("toggles_force_"))]
-    line_drag = [a - f for a, f in zip(applied, fluid)]  # the ram pressure on the closed skin sums to ~0
+    # the applied load minus the flow's force on the skin: the line drag, and the difference between the relaxed
+    # load the structure carries (load_relaxation) and the flow's latest (the line drag alone: wing.forces)
+    applied_minus_flow = [a - f for a, f in zip(applied, fluid)]
     scale = max(_norm(applied), 1e-30)
     iters = [int(r["iterations"]) for r in rows]
     hist = {k: [float(r[k]) for r in rows] for k in ("time", "Fx_fluid", "Fz_fluid", "anchor_force_x",
                                                       "anchor_force_z", "residual")}
     if rows and "chord_pitch_angle" in rows[0]:
         hist["chord_pitch_angle"] = [float(r["chord_pitch_angle"]) for r in rows]
+    # per window: the flow's lift and drag on the canopy
+    f_w = [[float(r[f"F{k}_fluid"]) for k in "xyz"] for r in rows]
+    hist["lift_N"] = [dot(f, lift_dir) for f in f_w]
+    hist["drag_N"] = [dot(f, flow_dir) for f in f_w]
     lift = dot(fluid, lift_dir)
     drag = dot(fluid, flow_dir)
     smean, smax = last.get("skin_stress_mean", float("nan")), last.get("skin_stress_max", float("nan"))
@@ -1271,10 +1306,13 @@ def coupled_summary(case, d):
         "moment_fluid_Nm": vec("M", "_fluid"), "moment_structure_Nm": vec("M", "_structure"),
         "fluid_force_N": fluid, "lift_N": lift, "drag_N": drag, "side_N": fluid[1],
         "CL": lift / (q * aref), "CD": drag / (q * aref), "L_over_D": lift / drag if drag else None,
-        "line_drag_N": line_drag, "applied_load_N": applied, "support_reaction_N": support,
+        "applied_minus_flow_N": applied_minus_flow, "applied_load_N": applied, "support_reaction_N": support,
+        "anchor_force_N": vec("anchor_force_"), "toggles_force_N": vec("toggles_force_"),
         "equilibrium_relative": _norm([a + b for a, b in zip(applied, support)]) / scale,
         "anchor_moment_Nm": vec("anchor_moment_"),
-        "pitch_deg": last.get("chord_pitch_angle"),
+        # the x-z angle between the mean of all leading-edge and all trailing-edge nodes: a probe of the whole
+        # canopy's pitch, not a section's angle of attack (those: summary.json's wing.section_alpha)
+        "mean_chord_pitch_deg": last.get("chord_pitch_angle"),
         "line_tension_max_N": last.get("line_tension_max"),
         "lines_left_sum_N": last.get("lines_left_sum"), "lines_right_sum_N": last.get("lines_right_sum"),
         "brake_tension_left_N": last.get("brake_tension_left"),

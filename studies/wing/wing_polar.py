@@ -49,7 +49,6 @@ model kOmegaSST
 turbulence_intensity 0.005
 viscosity_ratio 10
 mesh_motion none
-solver simple
 half_domain yes
 """
 
@@ -86,6 +85,14 @@ def y_plus(case):
     return None if last is None else {"min": float(last[2]), "max": float(last[3]), "mean": float(last[4])}
 
 
+def layer_coverage(case):
+    """prism_layers: snappyHexMesh's overall layer thickness on the wing as a percentage of the asked-for one
+    (its last table in log.snappyHexMesh); None without layers."""
+    text = (Path(case) / "log.snappyHexMesh").read_text(errors="replace")
+    m = re.findall(r"^wing\s+\d+\s+([\d.]+)\s+([\d.eE+-]+)\s+([\d.]+)\s*$", text, re.M)
+    return float(m[-1][2]) if m and "Layers added" in text else None
+
+
 def residuals(case, log="log.simpleFoam"):
     """The last iteration's initial residuals of Ux, p, k, omega and whether SIMPLE met its residualControl."""
     text = (Path(case) / log).read_text(errors="replace")
@@ -95,9 +102,15 @@ def residuals(case, log="log.simpleFoam"):
     return res, "SIMPLE solution converged" in text
 
 
-def run_point(out, variant, level, alpha, iterations, env):
+def case_dir(out, variant, level, alpha, solver, wall="functions"):
+    return (Path(out) / variant / level / (f"a{alpha:g}" + ("" if solver == "simple" else "-pimple")
+                                          + ("" if wall == "functions" else "-layers")))
+
+
+def run_point(out, variant, level, alpha, iterations, env, solver="simple", courant=2.0, flow_time=2.0,
+              wall="functions"):
     changes, bulge, _ = VARIANTS[variant]
-    case = Path(out) / variant / level / f"a{alpha:g}"
+    case = case_dir(out, variant, level, alpha, solver, wall)
     if (case / "summary.json").exists():
         return case, 0.0
     if case.exists():
@@ -109,9 +122,17 @@ def run_point(out, variant, level, alpha, iterations, env):
             text = structure_with(text.decode(), changes).encode()
         (case / f.name).write_bytes(text)
         os.chmod(case / f.name, f.stat().st_mode)
+    if solver == "simple":
+        run = f"solver simple\nsteps {iterations}\n"
+    else:
+        # time-accurate: Courant `courant` on the finest wing cell, `flow_time` seconds of flow (the mean is taken
+        # over the second half); 2 outer correctors per step
+        h = 1.0 / 2 ** {"coarse": 5, "medium": 6, "fine": 7, "wake": 5}[level]
+        steps = math.ceil(flow_time / (courant * h / 15.0))
+        run = f"solver pimple\ncourant {courant:g}\nouter_correctors 2\nsteps {steps}\n"
     (case / "polar.settings").write_text(
         SETTINGS + f"resolution {level}\nangle {alpha - INCIDENCE:g}   # alpha {alpha:g} deg at the centre chord\n"
-        f"steps {iterations}\nstl_bulge {bulge:g}\n")
+        f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n" + run)
     t0 = time.time()
     # The environment of the build (--env); the arguments are a list, nothing here passes through a shell but
     # the fixed `source` line (the file's path is its $0).
@@ -125,28 +146,40 @@ def run_point(out, variant, level, alpha, iterations, env):
     return case, time.time() - t0
 
 
-def collect(case, variant, level, alpha, wall):
+def collect(case, variant, level, alpha, wall_s, solver="simple", wall="functions"):
     s = json.loads((Path(case) / "summary.json").read_text())
     fl, rec = s["flow"], json.loads((Path(case) / "constant/fluidSettings.json").read_text())
-    res, converged = residuals(case)
+    res, converged = residuals(case, "log.simpleFoam" if solver == "simple" else "log.pimpleFoam")
     d = rec["derived"]
-    return {"variant": variant, "level": level, "alpha_deg": alpha, "CL": fl["CL"], "CD": fl["CD"],
-            "Cm": fl["CmPitch"], "CL_spread_last_fifth": fl["CL_spread_last_fifth"],
+    # The mean over the last fifth of the iterations: the answer of a converged run, and for a run whose forces
+    # still oscillate (separated flow that a steady solver cannot settle) the mean with its spread as the
+    # uncertainty; both the last value and the mean are kept.
+    h = fl["history"]
+    # steady: the last fifth of the iterations; time-accurate: the second half of the flow time
+    tail = max(2, len(h["CL"]) // (5 if solver == "simple" else 2))
+    mean = {k: sum(h[k][-tail:]) / tail for k in ("CL", "CD")}
+    cm = fl["CmPitch"]
+    return {"variant": variant, "level": level, "alpha_deg": alpha, "solver": solver, "wall": wall, "CL": mean["CL"], "CD": mean["CD"],
+            "CL_last": fl["CL"], "CD_last": fl["CD"],
+            "CL_min_last_fifth": min(h["CL"][-tail:]), "CL_max_last_fifth": max(h["CL"][-tail:]),
+            "Cm": cm, "CL_spread_last_fifth": fl["CL_spread_last_fifth"],
             "CD_spread_last_fifth": fl["CD_spread_last_fifth"], "iterations": fl["steps"],
             "residuals": res, "residual_control_met": converged,
             # steady: SIMPLE met its residual control, or the forces stopped moving (0.1 % over the last fifth
             # of the iterations) with the pressure residual below 1e-4
-            "converged": converged or (fl["CL_spread_last_fifth"] < 1e-3 and fl["CD_spread_last_fifth"] < 1e-3
-                                       and res.get("p", 1.0) < 1e-4), "cells": s["mesh"]["cells"],
-            "cells_whole_wing": 2 * s["mesh"]["cells"], "y_plus": y_plus(case), "wall_s": round(wall, 1),
+            "converged": (converged or (fl["CL_spread_last_fifth"] < 1e-3 and fl["CD_spread_last_fifth"] < 1e-3
+                                        and res.get("p", 1.0) < 1e-4)) if solver == "simple" else None,
+            "averaged_over": "last fifth of the iterations" if solver == "simple" else
+                             f"second half of {fl['time']:.3g} s of flow ({tail} steps)", "cells": s["mesh"]["cells"],
+            "cells_whole_wing": 2 * s["mesh"]["cells"], "y_plus": y_plus(case), "wall_s": round(wall_s, 1),
             "Aref_m2": d["Aref"], "aspect_ratio": d["aspect_ratio"], "span_projected_m": d["span_projected"],
-            "wall_cell_m": d["h_wing"]}
+            "wall_cell_m": d["h_wing"], "layer_coverage_percent": layer_coverage(case)}
 
 
 def store(path, rows):
     data = json.loads(Path(path).read_text()) if Path(path).exists() else {}
     old = data.get("points", [])
-    key = lambda r: (r["variant"], r["level"], r["alpha_deg"])
+    key = lambda r: (r["variant"], r["level"], r["alpha_deg"], r.get("solver", "simple"), r.get("wall", "functions"))
     new = {key(r): r for r in old}
     for r in rows:
         new[key(r)] = r
@@ -158,7 +191,8 @@ def store(path, rows):
         "alpha_is": "the centre section's chord line to the free stream [deg] (incidence 6 + inflow angle)",
         "command": "/usr/bin/python3 studies/wing/wing_polar.py " + " ".join(sys.argv[1:]),
         "machine": f"{platform.node()} ({os.cpu_count()} cores)", "date": datetime.date.today().isoformat(),
-        "points": sorted(new.values(), key=lambda r: (r["variant"], r["level"], r["alpha_deg"]))})
+        "points": sorted(new.values(), key=lambda r: (r["variant"], r["level"], r.get("solver", "simple"),
+                                                      r["alpha_deg"]))})
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     Path(path).write_text(json.dumps(data, indent=1) + "\n")
 
@@ -197,13 +231,21 @@ def plot(path, png):
     styles = {"coarse": "o-", "medium": "s--", "fine": "^:"}
     colours = {"flat": "C0", "arc": "C1", "bulged": "C3"}
     for v in VARIANTS:
-        for lvl in styles:
-            sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl], key=lambda p: p["alpha_deg"])
+        for lvl, solver, wall in [(lv, so, wa) for lv in styles for so in ("simple", "pimple")
+                                  for wa in ("functions", "layers")]:
+            sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl
+                          and p.get("solver", "simple") == solver and p.get("wall", "functions") == wall],
+                         key=lambda p: p["alpha_deg"])
             if not sel:
                 continue
-            lab = f"{v}, {lvl}"
+            lab = (f"{v}, {lvl}" + (", time-averaged" if solver == "pimple" else "")
+                   + (", prism layers" if wall == "layers" else ""))
             a = [p["alpha_deg"] for p in sel]
-            ax[0].plot(a, [p["CL"] for p in sel], styles[lvl], color=colours[v], label=lab)
+            # error bars: the range over the last fifth of the iterations where the steady solver did not settle
+            lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
+            hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
+            ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=styles[lvl], color=colours[v], label=lab,
+                           capsize=3, mfc="none" if lvl != "coarse" else None)
             ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], styles[lvl], color=colours[v], label=lab)
             ax[2].plot(a, [p["Cm"] for p in sel], styles[lvl], color=colours[v], label=lab)
     ar = next((p["aspect_ratio"] for p in pts if p["variant"] == "flat"), 3.0)
@@ -224,21 +266,64 @@ def plot(path, png):
     print(f"wing_polar: {png}")
 
 
+def table(path, linear_max=8.0):
+    """Markdown rows per variant, level and solver: lift slope and zero-lift angle fitted over alpha <= linear_max,
+    the estimate it is compared with, CD at alpha 4 and 8, cells and the cost of a point."""
+    data = json.loads(Path(path).read_text())
+    pts = data["points"]
+    rows = ["| variant | level | solver | wall | cells (half) | points | slope /rad (alpha <= %g) | alpha0 deg | Helmbold%s /rad "
+            "| ratio | CL at 4 / 8 deg | CD at 4 / 8 deg | settled | wall s per point |" % (linear_max, " x arc"),
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for v in VARIANTS:
+        for lvl in ("coarse", "medium", "fine"):
+            for solver, wall in [(so, wa) for so in ("simple", "pimple") for wa in ("functions", "layers")]:
+                sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl
+                              and p.get("solver", "simple") == solver and p.get("wall", "functions") == wall],
+                             key=lambda p: p["alpha_deg"])
+                if not sel:
+                    continue
+                lin = [p for p in sel if p["alpha_deg"] <= linear_max]
+                a, a0 = fit_slope(lin)
+                # the half-arc angle b / (2 R) of the arced variants (span 3 m along the arc, R = 3 m)
+                eps = 0.0 if v == "flat" else 0.5
+                ref = helmbold(sel[0]["aspect_ratio"], eps)
+                at = {p["alpha_deg"]: p for p in sel}
+                cl = " / ".join(f"{at[x]['CL']:.3f}" if x in at else "-" for x in (4.0, 8.0))
+                cd = " / ".join(f"{at[x]['CD']:.4f}" if x in at else "-" for x in (4.0, 8.0))
+                settled = sum(1 for p in sel if p.get("converged") or solver == "pimple")
+                times = sorted(p["wall_s"] for p in sel if p.get("wall_s")) or [0.0]
+                rows.append(f"| {v} | {lvl} | {solver} | {wall} | {max(p['cells'] for p in sel):,} | {len(sel)} | "
+                            f"{a:.2f} | {a0:.2f} | {ref:.2f} | {a / ref:.2f} | {cl} | {cd} | {settled}/{len(sel)} | "
+                            f"{times[len(times) // 2]:.0f} |" if a is not None else f"| {v} | {lvl} | {solver} | {wall} | - |")
+    return "\n".join(rows)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--variants", default="flat,arc,bulged")
     ap.add_argument("--levels", default="coarse")
     ap.add_argument("--alpha", default="-2,2,6,10", help="centre-chord angles of attack [deg]")
-    ap.add_argument("--iterations", type=int, default=1500)
+    ap.add_argument("--iterations", type=int, default=1500, help="simple: SIMPLE iterations at most")
+    ap.add_argument("--solver", choices=("simple", "pimple"), default="simple",
+                    help="simple: steady simpleFoam; pimple: time-accurate pimpleFoam, the mean over the second half "
+                         "(for flow a steady solver cannot settle)")
+    ap.add_argument("--wall", choices=("functions", "layers"), default="functions",
+                    help="functions: the 3D case's mesh, no prism layers; layers: prism_layers yes (y+ ~ 50)")
+    ap.add_argument("--courant", type=float, default=2.0, help="pimple: Courant number on the finest wing cell")
+    ap.add_argument("--flow-time", type=float, default=2.0, help="pimple: seconds of flow (30 chord passages at 15 m/s)")
     ap.add_argument("--out", default=str(ROOT / "studies-out/wing"))
     ap.add_argument("--json", default=str(ROOT / "docs/data/wing_polar.json"))
     ap.add_argument("--png", default=str(ROOT / "docs/img/wing_polar.png"))
     ap.add_argument("--env", default=str(ENV), help="the build's or install's share/fsi/fsi-env.sh")
     ap.add_argument("--collect", action="store_true", help="read finished points in OUT, run nothing")
     ap.add_argument("--plot", action="store_true", help="only the plot from the JSON")
+    ap.add_argument("--table", action="store_true", help="only the markdown table of slopes from the JSON")
     a = ap.parse_args()
-    if a.plot:
-        plot(a.json, a.png)
+    if a.plot or a.table:
+        if a.plot:
+            plot(a.json, a.png)
+        if a.table:
+            print(table(a.json))
         return 0
     variants = a.variants.split(",")
     for v in variants:
@@ -256,21 +341,24 @@ def main():
     for lvl in levels:
         for v in variants:
             for al in alphas:
-                case = Path(a.out) / v / lvl / f"a{al:g}"
+                case = case_dir(a.out, v, lvl, al, a.solver, a.wall)
                 if a.collect:
                     if not (case / "summary.json").exists():
                         continue
                     wall = 0.0
                 else:
                     print(f"wing_polar: {v} {lvl} alpha {al:g} ...", flush=True)
-                    case, wall = run_point(a.out, v, lvl, al, a.iterations, a.env)
+                    case, wall = run_point(a.out, v, lvl, al, a.iterations, a.env, a.solver, a.courant,
+                                           a.flow_time, a.wall)
                     if case is None:
                         failed += 1
                         continue
-                row = collect(case, v, lvl, al, wall)
+                row = collect(case, v, lvl, al, wall, a.solver, a.wall)
                 if a.collect:
                     old = json.loads(Path(a.json).read_text()) if Path(a.json).exists() else {"points": []}
-                    prev = [p for p in old["points"] if (p["variant"], p["level"], p["alpha_deg"]) == (v, lvl, al)]
+                    prev = [p for p in old["points"] if (p["variant"], p["level"], p["alpha_deg"],
+                                                         p.get("solver", "simple"), p.get("wall", "functions"))
+                            == (v, lvl, al, a.solver, a.wall)]
                     row["wall_s"] = prev[0]["wall_s"] if prev else None
                 store(a.json, [row])
                 print(f"  CL {row['CL']:.4f} CD {row['CD']:.4f} Cm {row['Cm']:.4f}, {row['cells']} cells, "

@@ -57,6 +57,7 @@ bad "solver steady" "pimple, simple"
 bad $'solver simple\ncoupled yes' "is for the rigid wing"
 bad $'half_domain yes\ncoupled yes' "is for the rigid wing"
 bad $'half_domain yes\nmirror_mesh yes' "exclude each other"
+bad $'prism_layers yes\ncoupled yes' "is for the rigid wing"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 

@@ -1,0 +1,142 @@
+#!/usr/bin/env python3
+"""Checks the wing engineer's numbers of a finished coupled ram-air case (summary.json's `wing`, written by
+cases/coupled/ramair_wing.py) against references computed here from the raw outputs, not from that code:
+
+  confluence   the tensions of every cable at the confluence point (found here by the generator's formula for
+               its position, not by the sets), summed as vectors with the line drag that node carries itself,
+               balance the anchor's reaction probe (the node's equilibrium, 1e-6 of the reaction); the summary's
+               vector sum is that of the same cables (1e-9)
+  line drag    the line drag recomputed here from the deformed lines of the last frame (the line_drag model of
+               structure/effects/AerodynamicDrag.hpp: 1/2 rho C_D d |U_n| U_n per unit length, every cable)
+               equals the summary's (1e-3): CD system = CD canopy + CD lines on both reference areas
+  design       the design section angle of every rib equals the generator's incidence + twist |2 s / b| (1e-9 deg)
+  glide        tan(glide angle) = CD / CL of the system; CL and CD of both areas from the summary's forces
+  surface      the wing patch's pressure + shear summed equals the interface lift (0.5 %)
+  trim         trim_reached, and the centre section's angle changed by less than 0.25 deg over the last fifth
+  plots        the wing_*.png exist and are not blank
+Usage: check_ramair_wing.py CASE_DIR   (exit 1 naming each failed check)
+"""
+import json
+import math
+import os
+import sys
+
+import numpy as np
+import yaml
+
+
+def main(case):
+    bad = []
+
+    def check(ok, what):
+        if not ok:
+            bad.append(what)
+
+    s = json.load(open(os.path.join(case, "summary.json")))
+    w, c = s["wing"], s["coupled"]
+    scene = yaml.safe_load(open(os.path.join(case, "structure-coupled.yaml")))
+    gen = scene["meshes"]["wing"]["generator"]
+    rec = json.load(open(os.path.join(case, "constant", "fluidSettings.json")))
+    e_d, e_l = np.array(rec["derived"]["flow_dir"]), np.array(rec["derived"]["lift_dir"])
+    q = rec["derived"]["q"]
+
+    import h5py
+    with h5py.File(os.path.join(case, "structure", "results.h5"), "r") as f:
+        steps = sorted(f["steps"].values(), key=lambda g: float(g.attrs["time"]))
+        g = steps[-1]
+        x, v, T = g["coordinates"][()], g["velocity"][()], g["cable_force"][()]
+        x0 = steps[0]["coordinates"][()] - steps[0]["displacement"][()]
+        lines = f["mesh/lines"][()]
+
+    # confluence point: the generator's formula (structure/parafoil/ParafoilGeometry.cpp)
+    span, L = gen["span"], gen["line_length"] * gen["span"]
+    mu = math.radians(gen.get("rigging_angle", 5.0))
+    conf = np.array([0.25 * gen["root_chord"] - L * math.sin(mu), 0.0, -L * math.cos(mu)])
+    k = int(np.argmin(np.linalg.norm(x0 - conf, axis=1)))
+    check(np.linalg.norm(x0[k] - conf) < 1e-9 * span, "no structure node at the generator's confluence point")
+    ld = scene["effects"]["line_drag"]
+    half_rho_cd_d = 0.5 * ld["density"] * ld["cd"] * ld["diameter"]
+    wind = np.array(ld["wind"], float)
+
+    def drag(e):
+        i, j = lines[e]
+        d = x[j] - x[i]
+        rel = wind - 0.5 * (v[i] + v[j])
+        wn = rel - (rel @ d) / (d @ d) * d
+        return half_rho_cd_d * np.linalg.norm(wn) * np.linalg.norm(d) * wn  # the element's whole force
+
+    at = [e for e in range(len(lines)) if k in lines[e]]
+    pull = sum(T[e] * (x[lines[e][1] if lines[e][0] == k else lines[e][0]] - x[k])
+               / np.linalg.norm(x[lines[e][1] if lines[e][0] == k else lines[e][0]] - x[k]) for e in at)
+    node_drag = sum(0.5 * drag(e) for e in at)
+    reaction = np.array(c["anchor_force_N"])
+    res = np.linalg.norm(pull + node_drag + reaction) / np.linalg.norm(reaction)
+    wl = w["lines"]
+    summ = np.array(wl["vector_sum_at_confluence_N"])
+    print(f"confluence: {len(at)} cables, tensions + own line drag + anchor reaction = {res:.2e} of the reaction; "
+          f"the summary's vector sum vs this one {np.linalg.norm(summ - pull) / np.linalg.norm(pull):.1e}; "
+          f"{len(wl['at_confluence'])} named lines")
+    check(res < 1e-6, f"the confluence node is not in equilibrium with the anchor's reaction ({res:.2e})")
+    check(np.linalg.norm(summ - pull) < 1e-9 * np.linalg.norm(pull), "the summary's vector sum is not the sum of the "
+          "tensions of the cables at the confluence point")
+    check(len(wl["at_confluence"]) == len(at), f"{len(wl['at_confluence'])} lines named at the confluence, {len(at)} there")
+    per_row = {r["lines"] for r in wl["rows"].values()}
+    check(len(per_row) == 1 and len(wl["rows"]) == len(gen.get("rows", [0.1, 0.3, 0.6, 0.8])),
+          f"rows at the confluence {wl['rows']}: every row should have as many lines")
+
+    # line drag from the deformed lines (every cable is in the line_drag sets of the main job's scene)
+    total = sum(drag(e) for e in range(len(lines)))
+    fo = w["forces"]
+    summary_drag = np.array(fo["line_drag_N"])
+    diff = np.linalg.norm(total - summary_drag) / np.linalg.norm(total)
+    print(f"line drag recomputed ({', '.join(f'{a:.3f}' for a in total)}) N vs the summary's "
+          f"({', '.join(f'{a:.3f}' for a in summary_drag)}) N: {diff:.1e}")
+    check(diff < 1e-3, f"line drag differs from the one recomputed from the deformed lines by {diff:.1e}")
+    for name, co in w["coefficients"].items():
+        if not isinstance(co, dict):
+            continue
+        cd_lines = float(total @ e_d) / (q * co["area_m2"])
+        check(abs(co["CD_system"] - (co["CD_canopy"] + cd_lines)) < 1e-3 * co["CD_system"],
+              f"{name}: CD system {co['CD_system']:.5f} is not CD canopy {co['CD_canopy']:.5f} + CD lines {cd_lines:.5f}")
+        check(abs(co["CL_canopy"] - fo["lift_canopy_N"] / (q * co["area_m2"])) < 1e-9,
+              f"{name}: CL canopy is not the lift over q A")
+        check(abs(math.tan(math.radians(w["coefficients"]["glide_angle_deg"])) - co["CD_system"] / co["CL_system"]) < 1e-9,
+              f"{name}: tan(glide angle) is not CD / CL of the system")
+    check(w["reference"]["deformed_projected_area_m2"] < w["reference"]["design_projected_area_structure_m2"] * 1.05,
+          "the loaded canopy's projected area grew by more than 5 %")
+
+    # design section angles: the generator's incidence + twist |2 s / b| on every rib
+    inc, twist, cells = gen.get("incidence", 0.0), gen.get("twist", 0.0), gen["cells"]
+    ribs = w["section_alpha"]["ribs"]
+    check(len(ribs) == cells + 1, f"{len(ribs)} ribs, the generator has {cells + 1}")
+    worst = max(abs(r["alpha_design_deg"] - (inc + twist * abs(2 * (-span / 2 + i * span / cells) / span)))
+                for i, r in enumerate(ribs))
+    print(f"design section angles vs incidence {inc} + twist {twist}: largest difference {worst:.1e} deg")
+    check(worst < 1e-9, f"the design section angles differ from the generator's incidence by {worst:.1e} deg")
+
+    fs = w["fluid_surface"]
+    print(f"wing patch lift vs the interface's: {100 * fs['lift_sum_vs_interface']:+.3f} % ({fs['load_is']})")
+    check(abs(fs["lift_sum_vs_interface"]) < 0.005, "the wing patch's pressure and shear do not sum to the interface lift")
+
+    t = w["trim"]
+    print(f"trim reached {t['trim_reached']}: CL {100 * t['CL_change']:.2f} %, CD {100 * t['CD_change']:.2f} %, centre "
+          f"alpha {t['centre_alpha_change_deg'] if t['centre_alpha_change_deg'] is None else round(t['centre_alpha_change_deg'], 3)} deg, balance {100 * t['balance']:.3f} %")
+    check(t["trim_reached"], "trim not reached: " + t["criterion"])
+    check(t["centre_alpha_change_deg"] is not None and t["centre_alpha_change_deg"] < 0.25,
+          "the centre section's angle changed by 0.25 deg or more over the last fifth")
+
+    import matplotlib.image
+    for name in ("wing_alpha", "wing_lift", "wing_cp", "wing_cp_map", "wing_sections", "wing_convergence", "wing_lines"):
+        path = os.path.join(case, "plots", name + ".png")
+        ok = os.path.exists(path) and float(matplotlib.image.imread(path)[..., :3].std()) > 0.01
+        check(ok, f"plots/{name}.png missing or blank")
+    for b in bad:
+        print("FAIL:", b)
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        print(__doc__.split("\n\n")[-1], file=sys.stderr)
+        sys.exit(2)
+    sys.exit(main(sys.argv[1]))

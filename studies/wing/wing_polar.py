@@ -244,10 +244,11 @@ def plot(path, png):
             # error bars: the range over the last fifth of the iterations where the steady solver did not settle
             lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
             hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
-            ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=styles[lvl], color=colours[v], label=lab,
+            col = "C2" if wall == "layers" else colours[v]
+            ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=styles[lvl], color=col, label=lab,
                            capsize=3, mfc="none" if lvl != "coarse" else None)
-            ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], styles[lvl], color=colours[v], label=lab)
-            ax[2].plot(a, [p["Cm"] for p in sel], styles[lvl], color=colours[v], label=lab)
+            ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], styles[lvl], color=col, label=lab)
+            ax[2].plot(a, [p["Cm"] for p in sel], styles[lvl], color=col, label=lab)
     ar = next((p["aspect_ratio"] for p in pts if p["variant"] == "flat"), 3.0)
     alpha0 = data.get("alpha0_section_deg", -4.15)
     al = [-4 + 0.5 * i for i in range(33)]
@@ -260,7 +261,9 @@ def plot(path, png):
     for x in ax:
         x.grid(alpha=0.3)
     ax[0].legend(fontsize=7)
-    fig.suptitle("Rung 2: the rigid ram-air wing, steady kOmegaSST, Re 1e6 (studies/wing/wing_polar.py)")
+    fig.suptitle("Rung 2: the rigid ram-air wing, kOmegaSST, Re 1e6, half domain: steady (simpleFoam) or time-averaged "
+                 "(pimpleFoam); bars: range over the averaging window; Helmbold lines from alpha0 -4.15 deg "
+                 "(studies/wing/wing_polar.py)", fontsize=9)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     print(f"wing_polar: {png}")
@@ -292,9 +295,9 @@ def table(path, linear_max=8.0):
                 cd = " / ".join(f"{at[x]['CD']:.4f}" if x in at else "-" for x in (4.0, 8.0))
                 settled = sum(1 for p in sel if p.get("converged") or solver == "pimple")
                 times = sorted(p["wall_s"] for p in sel if p.get("wall_s")) or [0.0]
+                fit = f"{a:.2f} | {a0:.2f} | {ref:.2f} | {a / ref:.2f}" if a is not None else f"- | - | {ref:.2f} | -"
                 rows.append(f"| {v} | {lvl} | {solver} | {wall} | {max(p['cells'] for p in sel):,} | {len(sel)} | "
-                            f"{a:.2f} | {a0:.2f} | {ref:.2f} | {a / ref:.2f} | {cl} | {cd} | {settled}/{len(sel)} | "
-                            f"{times[len(times) // 2]:.0f} |" if a is not None else f"| {v} | {lvl} | {solver} | {wall} | - |")
+                            f"{fit} | {cl} | {cd} | {settled}/{len(sel)} | {times[len(times) // 2]:.0f} |")
     return "\n".join(rows)
 
 

@@ -15,7 +15,8 @@ bulge (stl_bulge). Each finished point is appended to the JSON at once, so a cut
 
 The reference: Helmbold's low-aspect-ratio lifting line with a0 = 2 pi per radian, on the aspect ratio of the
 projected planform, times the arc factor (1 + sin(2 eps)/(2 eps))/2 with eps the half-arc angle b/(2R) for the
-arced variants (ram-air-data.md); the zero-lift angle of the section from rung 1 (docs/AERODYNAMICS.md).
+arced variants (ram-air-data.md). The slope is fitted, so no zero-lift angle enters the comparison; the plot's
+estimate lines start from thin-aerofoil theory's -4.15 deg (rung 1 measured -3.72 deg for NACA 4415).
 """
 import argparse
 import datetime

@@ -1,7 +1,64 @@
-"""Helpers of the scripts that run a coupled case in several variants and tabulate them
-(ramair_resolutions.py, sail_knobs.py): which variants were asked for, and why a run stopped early."""
+"""Helpers of the scripts and studies that run a coupled case in several variants and tabulate them
+(ramair_resolutions.py, sail_knobs.py, studies/wing/wing_polar.py, studies/ramair/trim_study.py): which variants
+were asked for, the case's settings and structure.yaml with some values changed, a copy of the case run by its
+Allrun, and why a run stopped early."""
 import re
+import shutil
+import subprocess
 import sys
+import time
+
+
+def settings_with(text, changes):
+    """A settings file's text with `key value` lines replaced (a key not present is appended)."""
+    lines = text.splitlines()
+    for key, value in changes.items():
+        pat = re.compile(rf"^{re.escape(key)}\s")
+        hit = [i for i, l in enumerate(lines) if pat.match(l)]
+        if hit:
+            lines[hit[0]] = f"{key} {value}"
+        else:
+            lines.append(f"{key} {value}")
+    return "\n".join(lines) + "\n"
+
+
+def structure_with(text, changes, where="structure.yaml"):
+    """structure.yaml's text with generator parameters replaced (`name: value` inside the generator's mapping);
+    the key "+effect" adds its value as an entry of the scene's effects: mapping."""
+    for key, value in changes.items():
+        if key == "+effect":
+            new, n = re.subn(r"^effects:\n", f"effects:\n  {value}\n", text, flags=re.M)
+            if n != 1:
+                sys.exit(f"{where}: {n} 'effects:' mappings, expected 1")
+            text = new
+            continue
+        new, n = re.subn(rf"\b{re.escape(key)}: [0-9.e+-]+", f"{key}: {value}", text)
+        if n != 1:
+            sys.exit(f"{where}: {n} '{key}:' entries, expected 1")
+        text = new
+    return text
+
+
+def run_copy(case, d, settings, structure, env, allrun="./Allrun.parallel"):
+    """Copies the case folder to d (replacing d), writes d/run.settings (the case's coupled.settings with
+    `settings` changed) and d/structure.yaml (with `structure` changed), runs `allrun -settings run.settings`
+    with the build's environment `env` sourced, its output in d/Allrun.out (not log.*: Allrun takes those for an
+    earlier run), and stores d/wall_seconds and d/exit_code (negative: a signal; stop_reason says so).
+    Returns the exit code. The arguments are a list: nothing passes through a shell but the fixed source line."""
+    if d.exists():
+        shutil.rmtree(d)
+    shutil.copytree(case, d)
+    (d / "run.settings").write_text(settings_with((case / "coupled.settings").read_text(), settings))
+    if structure:
+        (d / "structure.yaml").write_text(structure_with((case / "structure.yaml").read_text(), structure,
+                                                         str(case / "structure.yaml")))
+    t0 = time.monotonic()
+    with open(d / "Allrun.out", "w") as log:
+        p = subprocess.run(["bash", "-c", f'. "$0" && exec {allrun} -settings run.settings', str(env)], cwd=d,
+                           stdout=log, stderr=subprocess.STDOUT)
+    (d / "wall_seconds").write_text(f"{time.monotonic() - t0:.1f}\n")
+    (d / "exit_code").write_text(f"{p.returncode}\n")
+    return p.returncode
 
 
 def chosen(only, variants, prog):

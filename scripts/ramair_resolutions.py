@@ -19,45 +19,14 @@ import datetime
 import json
 import re
 import shutil
-import subprocess
 import sys
-import time
 from pathlib import Path
 
-from case_variants import chosen, stop_reason
+from case_variants import chosen, run_copy, stop_reason
 
 ROOT = Path(__file__).resolve().parent.parent
 CASE = ROOT / "cases/coupled/ramair-kt"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"
-
-
-def settings_with(text, changes):
-    """coupled.settings with `key value` lines replaced (a key not present is appended)."""
-    lines = text.splitlines()
-    for key, value in changes.items():
-        pat = re.compile(rf"^{re.escape(key)}\s")
-        hit = [i for i, l in enumerate(lines) if pat.match(l)]
-        if hit:
-            lines[hit[0]] = f"{key} {value}"
-        else:
-            lines.append(f"{key} {value}")
-    return "\n".join(lines) + "\n"
-
-
-def structure_with(text, changes):
-    """structure.yaml with generator parameters replaced (`name: value` inside the generator's mapping)."""
-    for key, value in changes.items():
-        if key == "+effect":  # an effect added to the scene's effects: mapping
-            new, n = re.subn(r"^effects:\n", f"effects:\n  {value}\n", text, flags=re.M)
-            if n != 1:
-                sys.exit(f"ramair_resolutions: structure.yaml has {n} 'effects:' mappings, expected 1")
-            text = new
-            continue
-        new, n = re.subn(rf"\b{re.escape(key)}: [0-9.e+-]+", f"{key}: {value}", text)
-        if n != 1:
-            sys.exit(f"ramair_resolutions: structure.yaml has {n} '{key}:' entries, expected 1")
-        text = new
-    return text
 
 
 def doubled_steps():
@@ -97,23 +66,10 @@ VARIANTS = {
 
 def run_variant(name, out):
     _, settings, structure = VARIANTS[name]
-    d = out / name
-    if d.exists():
-        shutil.rmtree(d)
-    shutil.copytree(CASE, d)
-    (d / "run.settings").write_text(settings_with((CASE / "coupled.settings").read_text(), settings))
-    if structure:
-        (d / "structure.yaml").write_text(structure_with((CASE / "structure.yaml").read_text(), structure))
-    t0 = time.monotonic()
-    with open(d / "Allrun.out", "w") as log:  # not log.*: Allrun takes those for an earlier run
-        p = subprocess.run(["bash", "-c", f". '{ENV}' && ./Allrun.parallel -settings run.settings"], cwd=d,
-                           stdout=log, stderr=subprocess.STDOUT)
-    wall = time.monotonic() - t0
-    (d / "wall_seconds").write_text(f"{wall:.1f}\n")
-    (d / "exit_code").write_text(f"{p.returncode}\n")  # negative: a signal (stop_reason says so)
-    if p.returncode != 0:
-        print(f"ramair_resolutions: {name} failed (exit {p.returncode}); see {d / 'Allrun.out'}", file=sys.stderr)
-    return p.returncode == 0
+    rc = run_copy(CASE, out / name, settings, structure, ENV)
+    if rc != 0:
+        print(f"ramair_resolutions: {name} failed (exit {rc}); see {out / name / 'Allrun.out'}", file=sys.stderr)
+    return rc == 0
 
 
 def collect(name, out):

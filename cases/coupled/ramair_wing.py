@@ -518,7 +518,7 @@ def analyse(case, rec, c):
     s, d = rec["settings"], rec["derived"]
     e_d, e_l = np.array(d["flow_dir"], float), np.array(d["lift_dir"], float)
     e_s = np.cross(e_l, e_d)  # the span direction (+y: right)
-    q, rho, speed = d["q"], s["rho"], s["speed"]
+    q = d["q"]
     a_design = d["Aref"]
     res = Results(os.path.join(case, "structure", "results.h5"))
     canopy = Canopy(os.path.join(case, "constant", "structure", "wing.msh"), res)
@@ -811,6 +811,19 @@ def fluid_surface(case, rec, c, canopy, X, end, s_end, w):
         "elliptic_is": "4 L / (pi b) sqrt(1 - (2 y / b)^2), L the patch's lift, b its projected span",
     }
     _finite("lift distribution", fine, total)
+    # the pitching moment of the patch's load about the deformed centre section's quarter-chord point, on the
+    # design area and the centre rib's design chord; nose up positive (about +span: x downstream, z up)
+    kc = int(np.argmin(np.abs(s_end)))
+    ref = np.asarray(end[kc]["qc"], float)
+    m_s = float(np.cross(centres - ref, f).sum(0) @ e_s)
+    c_ref = float(w["section_alpha"]["ribs"][kc]["chord_design_m"])
+    out["Cm_quarter_chord"] = m_s / (d["q"] * d["Aref"] * c_ref)
+    out["Cm_is"] = ("pitching moment of pressure + wall shear on the wing patch about the deformed centre "
+                    "section's quarter-chord point, along the span axis (nose up positive), over q x design "
+                    "projected area x the centre rib's design chord")
+    out["Cm_reference_point_m"] = ref.tolist()
+    out["Cm_reference_chord_m"] = c_ref
+    _finite("pitching moment", m_s)
     # (c) Cp along three ribs of the right half: the faces near each deformed rib's plane
     cp = p / (0.5 * s["speed"] ** 2)
     n_out = -sf / mag[:, None]
@@ -915,7 +928,7 @@ def headline(w):
         f"CD system {dfm['CD_system']:.4f}",
         f"  L/D canopy {co['L_over_D_canopy']:.2f}, system {co['L_over_D_system']:.2f}; glide angle "
         f"{co['glide_angle_deg']:.2f} deg (no payload)",
-        f"  lines at the confluence: rows " + ", ".join(f"{k} {v['sum_N']:.1f} N ({100 * v['share']:.0f} %)"
+        "  lines at the confluence: rows " + ", ".join(f"{k} {v['sum_N']:.1f} N ({100 * v['share']:.0f} %)"
                                                         for k, v in sorted(rows.items()))
         + f"; vector sum ({vs[0]:.2f}, {vs[1]:.2f}, {vs[2]:.2f}) N vs anchor reaction "
           f"({', '.join(f'{-x:.2f}' for x in li['anchor_reaction_N'])}) N",
@@ -1075,7 +1088,7 @@ def plots(case, rec, c, canopy, X, X0, design, end, s_end, w, g):
     save(fig, "wing_cp.png")
 
     # (c) planform map of Cp, upper and lower
-    pts, faces, cp, n_out, centres = g["pts"], g["faces"], g["cp"], g["n_out"], g["centres"]
+    pts, faces, cp, n_out = g["pts"], g["faces"], g["cp"], g["n_out"]
     polys = [np.stack([pts[f] @ e_s, -(pts[f] @ e_d)], 1) for f in faces]
     up = n_out @ e_l > 0
     lo, hi = np.percentile(cp, [1, 99])

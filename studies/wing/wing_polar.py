@@ -31,6 +31,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent.parent
+sys.path.insert(0, str(ROOT / "scripts"))
+from case_variants import structure_with  # noqa: E402 (the case's structure.yaml with values changed)
 CASE = ROOT / "cases/coupled/ramair-kt"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"
 INCIDENCE = 6.0  # structure.yaml's generator incidence [deg]: the centre section's chord to the x axis
@@ -52,16 +54,6 @@ viscosity_ratio 10
 mesh_motion none
 half_domain yes
 """
-
-
-def structure_with(text, changes):
-    """structure.yaml with generator parameters replaced (`name: value` inside the generator's mapping)."""
-    for key, value in changes.items():
-        new, n = re.subn(rf"\b{re.escape(key)}: [0-9.e+-]+", f"{key}: {value}", text)
-        if n != 1:
-            sys.exit(f"wing_polar: {CASE}/structure.yaml has {n} '{key}:' entries, expected 1")
-        text = new
-    return text
 
 
 def tracked_case_files():
@@ -120,7 +112,7 @@ def run_point(out, variant, level, alpha, iterations, env, solver="simple", cour
     for f in tracked_case_files():
         text = f.read_bytes()
         if f.name == "structure.yaml":
-            text = structure_with(text.decode(), changes).encode()
+            text = structure_with(text.decode(), changes, f"{CASE}/structure.yaml").encode()
         (case / f.name).write_bytes(text)
         os.chmod(case / f.name, f.stat().st_mode)
     if solver == "simple":

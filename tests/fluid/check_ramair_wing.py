@@ -118,6 +118,24 @@ def main(case):
     print(f"wing patch lift vs the interface's: {100 * fs['lift_sum_vs_interface']:+.3f} % ({fs['load_is']})")
     check(abs(fs["lift_sum_vs_interface"]) < 0.005, "the wing patch's pressure and shear do not sum to the interface lift")
 
+    # the pitching moment about the deformed centre quarter chord, moved to forceCoeffs' CofR (the design's),
+    # against OpenFOAM's own CmPitch there (its forces function object, the same last window)
+    ref, cofr = fs["Cm_reference_point_m"], s["reference"]["CofR"]
+    a_design = s["reference"]["Aref_m2"]
+    F = fs["force_sum_N"]
+    arm = [ref[i] - cofr[i] for i in range(3)]
+    transfer_y = arm[2] * F[0] - arm[0] * F[2]  # ((ref - CofR) x F) . (0 1 0)
+    m_cofr = fs["Cm_quarter_chord"] * q * a_design * fs["Cm_reference_chord_m"] + transfer_y
+    cm_cofr = m_cofr / (q * a_design * s["reference"]["lRef_m"])
+    cm_foam = s["flow"]["CmPitch"]
+    print(f"Cm about the deformed centre quarter chord {fs['Cm_quarter_chord']:.4f}; moved to CofR {cm_cofr:.4f}, "
+          f"forceCoeffs' CmPitch {cm_foam:.4f}")
+    check(abs(cm_cofr - cm_foam) < 0.002 + 0.02 * abs(cm_foam),
+          "the pitching moment of the patch's faces disagrees with forceCoeffs' CmPitch about CofR")
+    check(-0.3 < fs["Cm_quarter_chord"] < 0.0,
+          "Cm about the quarter chord is not nose-down (a positively cambered section's, thin-aerofoil theory "
+          "-0.106 for the NACA 44xx camber line)")
+
     t = w["trim"]
     print(f"trim reached {t['trim_reached']}: CL {100 * t['CL_change']:.2f} %, CD {100 * t['CD_change']:.2f} %, centre "
           f"alpha {t['centre_alpha_change_deg'] if t['centre_alpha_change_deg'] is None else round(t['centre_alpha_change_deg'], 3)} deg, balance {100 * t['balance']:.3f} %")

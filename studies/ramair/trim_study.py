@@ -1,0 +1,320 @@
+#!/usr/bin/python3
+"""Rungs 3 and 4 of the fluid validation ladder (issue 33, docs/AERODYNAMICS.md): the coupled ram-air wing of
+cases/coupled/ramair-kt (the main job) at its trim,
+
+  convergence  the same wing at three structure resolutions (chordwise points 20/30/40, span divisions 2/3/4:
+               edge length h = 1, 2/3, 1/2 of the main job's) and two fluid resolutions (the main job's mesh,
+               and `resolution wake`: the near-wing and wake boxes one level finer);
+               -> docs/data/ramair_convergence.json (CL, CD, trim angle, trim_reached per level pair);
+  polar        the main job's wing at four or more rigging angles (the lines' tilt back, structure.yaml's
+               rigging_angle): the flexible wing's CL, CD, Cm, L/D and trim angle of attack per rigging angle,
+               the design chart of a parafoil -> docs/data/ramair_polar.json.
+
+Every run is a copy of the case in OUT/<run> run with ./Allrun.parallel (2 ranks) and a settings file written
+here; its summary (summary.json's `wing`, ramair_wing.py) gives the numbers. Runs already finished in OUT are
+not run again (--rerun does), so a cut-off study resumes where it stopped.
+
+  /usr/bin/python3 studies/ramair/trim_study.py --runs polar            (s1-nobend = the main job = rigging 13, rig09 rig11 rig15 rig17)
+  /usr/bin/python3 studies/ramair/trim_study.py --runs convergence      (s1 s2 s3 at both fluid levels)
+  /usr/bin/python3 studies/ramair/trim_study.py --runs rig09,s2 [--out DIR] [--collect] [--docs]
+
+--collect reads finished runs only; --docs writes docs/data/ramair_convergence.json, ramair_polar.json and
+their plots in docs/img/. About 4-5 min per run at the main job's fluid mesh and 12 min at `wake` on the 2-core
+machine of docs/PERFORMANCE.md.
+
+The structure levels carry the fabric's bending stiffness (5.2e-5 N m, docs/RAMAIR.md): without it the finer
+skins fold at element scale at the leading edge (a folded skin is a mesh artefact, not the canopy), and on the
+main job's skin it changes CL and CD by 1 % or less; s1-nobend (the main job itself) measures that here.
+"""
+import argparse
+import datetime
+import json
+import math
+import shutil
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+CASE = ROOT / "cases/coupled/ramair-kt"
+ENV = ROOT / "build/share/fsi/fsi-env.sh"
+sys.path.insert(0, str(ROOT / "scripts"))
+from case_variants import run_copy, stop_reason  # noqa: E402 (the same edits and runs of the case's copies)
+
+BENDING = {"+effect": "bending: {triangles: wing/skin, rigidity: 5.2e-5}"}
+STRUCTURE_LEVELS = {  # name: (h relative to the main job's, generator changes)
+    "s1": (1.0, {}),
+    "s2": (2.0 / 3.0, {"chordwise_points": 30, "span_divisions": 3}),
+    "s3": (0.5, {"chordwise_points": 40, "span_divisions": 4}),
+}
+FLUID_LEVELS = {"f1": {}, "f2": {"resolution": "wake"}}  # f1: the main job's mesh
+RIGGING = (9, 11, 15, 17)  # and 13: the main job's, run as s1-nobend
+
+
+def runs():
+    """run name: (kind, settings changes, structure changes, facts)"""
+    out = {"s1-nobend": ("polar", {}, {}, {"structure": "s1", "fluid": "f1", "h": 1.0, "bending": False,
+                                           "rigging_angle_deg": 13, "main_job": True})}
+    for f, fs in FLUID_LEVELS.items():
+        for s, (h, gen) in STRUCTURE_LEVELS.items():
+            name = s if f == "f1" else f"{s}-{f}"
+            out[name] = ("convergence", fs, {**gen, **BENDING},
+                         {"structure": s, "fluid": f, "h": h, "bending": True})
+    for r in RIGGING:
+        out[f"rig{r:02d}"] = ("polar", {}, {"rigging_angle": r}, {"rigging_angle_deg": r})
+    return out
+
+
+RUNS = runs()
+
+
+def run(name, out, rerun):
+    kind, settings, structure, _ = RUNS[name]
+    d = out / name
+    if (d / "summary.json").exists() and not rerun:
+        print(f"trim_study: {name} finished before; kept ({d})", flush=True)
+        return
+    print(f"trim_study: running {name} in {d}", flush=True)
+    rc = run_copy(CASE, d, settings, structure, ENV)
+    if rc != 0:
+        print(f"trim_study: {name} failed (exit {rc}); see {d / 'Allrun.out'}", file=sys.stderr)
+
+
+def collect(name, out):
+    kind, _, _, facts = RUNS[name]
+    d = out / name
+    row = {"run": name, **facts}
+    if (d / "wall_seconds").exists():
+        row["wall_s"] = float((d / "wall_seconds").read_text())
+    if not (d / "summary.json").exists():
+        row["trim_reached"] = False
+        row["stopped"] = stop_reason(d) if d.exists() else "not run"
+        return row
+    s = json.loads((d / "summary.json").read_text())
+    c, w = s["coupled"], s["wing"]
+    des, dfm = w["coefficients"]["design_area"], w["coefficients"]["deformed_area"]
+    a = w["section_alpha"]
+    import h5py
+    with h5py.File(d / "structure/results.h5", "r") as h:
+        row["structure_triangles"] = int(h["mesh/triangles"].shape[0])
+    row.update({
+        "cells": s["mesh"]["cells"], "windows": c["windows"],
+        "CL": des["CL_canopy"], "CD": des["CD_canopy"], "CD_system": des["CD_system"],
+        "CL_deformed_area": dfm["CL_canopy"], "CD_deformed_area": dfm["CD_canopy"],
+        "L_over_D_canopy": w["coefficients"]["L_over_D_canopy"], "L_over_D_system": w["coefficients"]["L_over_D_system"],
+        "glide_angle_deg": w["coefficients"]["glide_angle_deg"],
+        "Cm": w["fluid_surface"].get("Cm_quarter_chord"),
+        "alpha_centre_deg": a["centre_deg"], "alpha_span_average_deg": a["span_average_deg"], "alpha_tip_deg": a["tip_deg"],
+        "tips_te_inboard_m": a["tips_te_inboard_of_le_m"], "planform_change": w["reference"]["planform_change"],
+        "trim_reached": w["trim"]["trim_reached"], "CL_change_last": w["trim"]["CL_change"],
+        "CD_change_last": w["trim"]["CD_change"], "balance": c["equilibrium_relative"],
+        "skin_folds": c.get("skin_folds"),
+    })
+    return row
+
+
+def richardson(h, f):
+    """Least-squares fit f = f0 + k h^p over the levels (p from three levels when they are monotone, else 1:
+    the first-order bound), with the error bar |f0 - f(finest)|; None below two levels."""
+    pts = sorted((hi, fi) for hi, fi in zip(h, f) if fi is not None)
+    if len(pts) < 2:
+        return None
+    import numpy as np
+    hs, fs = np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
+    p = 1.0
+    if len(pts) >= 3 and (fs[1] - fs[0]) * (fs[2] - fs[1]) > 0:
+        best = None
+        for q in np.linspace(0.3, 4.0, 371):  # the order whose fit has the least residual
+            A = np.vstack([np.ones_like(hs), hs ** q]).T
+            coef, res, *_ = np.linalg.lstsq(A, fs, rcond=None)
+            r = float(np.sum((A @ coef - fs) ** 2))
+            if best is None or r < best[0]:
+                best = (r, q, coef)
+        p = float(best[1])
+    A = np.vstack([np.ones_like(hs), hs ** p]).T
+    coef = np.linalg.lstsq(A, fs, rcond=None)[0]
+    f0 = float(coef[0])
+    return {"extrapolated": f0, "order": p, "finest": float(fs[0]), "error_bar": abs(f0 - float(fs[0])),
+            "order_is": "fitted over three monotone levels" if len(pts) >= 3 and p != 1.0 or len(pts) >= 3
+            and (fs[1] - fs[0]) * (fs[2] - fs[1]) > 0 else "1 (assumed: fewer than three monotone levels)"}
+
+
+def convergence_doc(rows):
+    ok = {(r["structure"], r["fluid"]): r for r in rows if "CL" in r and r.get("bending")}
+    main = next((r for r in rows if r["run"] == "s1-nobend" and "CL" in r), None)
+    out = {"levels": rows, "extrapolated": {}}
+    for f in FLUID_LEVELS:
+        lv = [ok[(s, f)] for s in STRUCTURE_LEVELS if (s, f) in ok]
+        ex = {}
+        for key in ("CL", "CD", "CD_system", "alpha_centre_deg", "alpha_span_average_deg", "L_over_D_system"):
+            ex[key] = richardson([r["h"] for r in lv], [r[key] for r in lv])
+        out["extrapolated"][f] = ex
+    best = out["extrapolated"].get("f2") if all((s, "f2") in ok for s in STRUCTURE_LEVELS) else \
+        out["extrapolated"].get("f1")
+    if main and best:
+        out["main_job_error"] = {k: {"main_job": main[k], "converged": best[k]["extrapolated"],
+                                     "error": main[k] - best[k]["extrapolated"],
+                                     "relative": (main[k] / best[k]["extrapolated"] - 1) if k != "alpha_centre_deg"
+                                     and k != "alpha_span_average_deg" else None,
+                                     "error_bar_of_converged": best[k]["error_bar"]}
+                                 for k in ("CL", "CD", "CD_system", "alpha_centre_deg", "alpha_span_average_deg")
+                                 if best.get(k)}
+        out["main_job_error_is"] = ("the main job (s1-nobend: structure level s1 without bending, fluid f1) against "
+                                    "the value extrapolated to h -> 0 over the structure levels on the finest fluid "
+                                    "level all three reached (f2 if it did, else f1)")
+    return out
+
+
+def plot_convergence(doc, png):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = [r for r in doc["levels"] if "CL" in r and r.get("bending")]
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4))
+    for k, (key, lab) in enumerate((("CL", "CL canopy (design area)"), ("CD_system", "CD system (canopy + lines)"),
+                                    ("alpha_centre_deg", "centre section's angle of attack [deg]"))):
+        for j, f in enumerate(FLUID_LEVELS):
+            sel = sorted((r for r in rows if r["fluid"] == f), key=lambda r: r["h"])
+            if not sel:
+                continue
+            ax[k].plot([r["h"] for r in sel], [r[key] for r in sel], "o-" if f == "f1" else "s--", color=f"C{j}",
+                       label={"f1": "fluid: main job's mesh", "f2": "fluid: wake (finer off the skin)"}[f])
+            for r in sel:
+                if not r["trim_reached"]:
+                    ax[k].plot(r["h"], r[key], "x", color="k", ms=10)
+            ex = doc["extrapolated"][f].get(key)
+            if ex:
+                ax[k].errorbar([0], [ex["extrapolated"]], yerr=[ex["error_bar"]], fmt="*", color=f"C{j}", ms=10,
+                               capsize=4)
+        main = next((r for r in doc["levels"] if r["run"] == "s1-nobend" and "CL" in r), None)
+        if main:
+            ax[k].plot([1.0], [main[key]], "D", color="C3", mfc="none", ms=9, label="main job (no bending)")
+        ax[k].set(xlabel="structure edge length h / main job's", ylabel=lab, xlim=(-0.05, 1.1))
+        ax[k].grid(alpha=0.3)
+    ax[0].legend(fontsize=8)
+    fig.suptitle("Coupled ram-air wing at its trim: structure x fluid resolution (star: extrapolated to h -> 0; "
+                 "x: trim not reached)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def plot_polar(rows, png, rigid=None):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = sorted((r for r in rows if "CL" in r), key=lambda r: r["rigging_angle_deg"])
+    fig, ax = plt.subplots(1, 4, figsize=(16, 4))
+    a = [r["alpha_span_average_deg"] for r in rows]
+    rig = [r["rigging_angle_deg"] for r in rows]
+    ax[0].plot(rig, [r["alpha_centre_deg"] for r in rows], "o-", label="centre section")
+    ax[0].plot(rig, a, "s-", label="span average")
+    ax[0].plot(rig, [r["alpha_tip_deg"] for r in rows], "^-", label="tips")
+    ax[0].set(xlabel="rigging angle [deg]", ylabel="trim angle of attack [deg]", title="trim per rigging angle")
+    ac = [r["alpha_centre_deg"] for r in rows]
+    ax[1].plot(ac, [r["CL"] for r in rows], "o-", label="flexible, coupled (design area), x: centre section")
+    ax[1].plot(a, [r["CL"] for r in rows], "s:", label="flexible, coupled (design area), x: span average")
+    if rigid:
+        ax[1].plot(rigid["alpha"], rigid["CL"], "k^--", label=rigid["label"])
+        est = rigid.get("estimate")
+        if est:
+            ax[1].plot(est["alpha"], est["CL"], "k-", lw=0.8, label=est["label"])
+    ax[1].set(xlabel="section angle of attack [deg]", ylabel="CL", title="lift")
+    ax[2].plot([r["CD"] for r in rows], [r["CL"] for r in rows], "o-", label="canopy")
+    ax[2].plot([r["CD_system"] for r in rows], [r["CL"] for r in rows], "s-", label="system (canopy + lines)")
+    if rigid:
+        ax[2].plot(rigid["CD"], rigid["CL"], "k^--", label=rigid["label"])
+    ax[2].set(xlabel="CD", ylabel="CL", title="drag polar (design area)")
+    ax[3].plot(rig, [r["L_over_D_system"] for r in rows], "s-", label="L/D system")
+    ax[3].plot(rig, [r["L_over_D_canopy"] for r in rows], "o-", label="L/D canopy")
+    if all(r.get("Cm") is not None for r in rows):
+        b = ax[3].twinx()
+        b.plot(rig, [r["Cm"] for r in rows], "d:", color="C3", label="Cm (quarter chord)")
+        b.set_ylabel("Cm about the centre section's quarter chord", color="C3")
+    ax[3].set(xlabel="rigging angle [deg]", title="glide ratio and pitching moment")
+    for x in ax:
+        x.grid(alpha=0.3)
+        x.legend(fontsize=7)
+    for r in rows:
+        if not r["trim_reached"]:
+            ax[0].annotate("trim not reached", (r["rigging_angle_deg"], r["alpha_centre_deg"]), fontsize=7)
+    fig.suptitle("Flexible ram-air wing (coupled, anchored at the confluence): the design chart", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def rigid_polar():
+    """Rung 2's rigid arc wing (flat panels, medium mesh, steady, docs/data/wing_polar.json) and Helmbold's
+    lifting line with the arc factor from rung 1's zero-lift angle, for the plot; x: the centre section's angle."""
+    p = ROOT / "docs/data/wing_polar.json"
+    if not p.exists():
+        return None
+    d = json.loads(p.read_text())
+    pts = [r for r in d.get("points", []) if r.get("variant") == "arc" and r.get("level") == "medium"
+           and r.get("solver") == "simple" and r.get("wall") == "functions" and "CL" in r]
+    if not pts:
+        return None
+    pts.sort(key=lambda r: r["alpha_deg"])
+    ar, R = pts[0]["aspect_ratio"], 3.0
+    sys.path.insert(0, str(ROOT / "studies/wing"))
+    from wing_polar import helmbold  # noqa: E402
+    eps = 3.0 / (2 * R)  # the half-arc angle of the design's 3 m arc length on R = 3 m
+    slope = helmbold(ar, eps)
+    alpha0 = -3.72  # rung 1: NACA 4415, fine layers (docs/data/section_polar.json)
+    est_a = [-4.0, 12.0]
+    return {"alpha": [r["alpha_deg"] for r in pts], "CL": [r["CL"] for r in pts], "CD": [r["CD"] for r in pts],
+            "label": "rigid arc wing, flat panels (rung 2, medium)",
+            "estimate": {"alpha": est_a, "CL": [slope * math.radians(a - alpha0) for a in est_a],
+                         "label": f"Helmbold x arc ({slope:.2f}/rad), alpha0 {alpha0} deg"}}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=str(ROOT / "studies-out/ramair"))
+    ap.add_argument("--runs", default="polar,convergence")
+    ap.add_argument("--collect", action="store_true")
+    ap.add_argument("--rerun", action="store_true")
+    ap.add_argument("--docs", action="store_true")
+    a = ap.parse_args()
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    names = []
+    for item in a.runs.split(","):
+        if item in ("polar", "convergence"):
+            names += [n for n, v in RUNS.items() if v[0] == item]
+        elif item in RUNS:
+            names.append(item)
+        else:
+            sys.exit(f"trim_study: unknown run '{item}'; valid: polar, convergence, {', '.join(RUNS)}")
+    if not a.collect:
+        for n in names:
+            run(n, out, a.rerun)
+    conv = [collect(n, out) for n, v in RUNS.items() if (v[0] == "convergence" or n == "s1-nobend")
+            and (out / n).exists()]
+    polar = [collect(n, out) for n, v in RUNS.items() if v[0] == "polar" and (out / n).exists()]
+    # the main job (s1-nobend) is both the convergence study's reference and the polar's rigging angle 13
+    stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    from accuracy_cost import git_commit, machine  # noqa: E402
+    meta = {"machine": machine(), "finished": stamp, "commit": git_commit()}
+    cdoc = {"command": "/usr/bin/python3 studies/ramair/trim_study.py --runs convergence --docs", **meta,
+            **convergence_doc(conv)}
+    pdoc = {"command": "/usr/bin/python3 studies/ramair/trim_study.py --runs polar --docs", **meta,
+            "coefficients_are": "CL, CD on the design projected area (forceCoeffs' Aref); CD_system adds the lines' "
+                                "drag; Cm about the deformed centre section's quarter-chord point, on the design "
+                                "area and the root chord, nose up positive",
+            "rows": polar}
+    (out / "ramair_convergence.json").write_text(json.dumps(cdoc, indent=1) + "\n")
+    (out / "ramair_polar.json").write_text(json.dumps(pdoc, indent=1) + "\n")
+    for r in conv + polar:
+        print(json.dumps({k: (round(v, 4) if isinstance(v, float) else v) for k, v in r.items()}))
+    if conv:
+        plot_convergence(cdoc, out / "ramair_convergence.png")
+    if polar:
+        plot_polar(polar, out / "ramair_polar.png", rigid_polar())
+    if a.docs:
+        for n in ("ramair_convergence", "ramair_polar"):
+            if (out / f"{n}.png").exists():
+                shutil.copy(out / f"{n}.json", ROOT / f"docs/data/{n}.json")
+                shutil.copy(out / f"{n}.png", ROOT / f"docs/img/{n}.png")
+
+
+if __name__ == "__main__":
+    main()

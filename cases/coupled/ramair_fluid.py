@@ -15,6 +15,7 @@ Usage (run by the case's Allrun; /usr/bin/python3, standard library only):
   ramair_fluid.py fields CASE                 0/ (U, p, pointDisplacement; k, omega, nut for kOmegaSST): after
                                               snappyHexMesh, from constant/fluidSettings.json
   ramair_fluid.py summary CASE                summary.json from the logs, postProcessing/ and constant/polyMesh
+  ramair_fluid.py settings-table              the settings as a Markdown table (docs/RAMAIR.md "Settings")
   ramair_fluid.py patch-area CASE PATCH       area of a boundary patch of constant/polyMesh (ASCII)
   ramair_fluid.py mirror-check CASE           mirror_mesh yes, before mirrorMesh: every point of the patch
                                               `mirror` lies on the plane y = 0
@@ -61,8 +62,13 @@ SETTINGS = {
     "angle": ("float", 0.0, -30.0, 30.0, "inflow angle in the x-z plane [deg], added to the wing's incidence"),
     "nu": ("float", 1.5e-5, 1e-7, 10.0, "kinematic viscosity [m^2/s]"),
     "rho": ("float", 1.225, 1e-3, 1e4, "density for forces [kg/m^3] (p is kinematic)"),
-    "model": (["laminar", "kOmegaSST"], "laminar", None, None, "flow model"),
-    "resolution": (list(RESOLUTIONS), "coarse", None, None, "mesh resolution"),
+    "model": (["laminar", "kOmegaSST"], "laminar", None, None,
+              "flow model; kOmegaSST with wall functions on the wing (kqRWallFunction, omegaWallFunction, "
+              "nutUSpaldingWallFunction) and inletOutlet on the far field"),
+    "resolution": (list(RESOLUTIONS), "coarse", None, None,
+                   "mesh levels of the skin, its sharp edges and the near-wing and wake boxes (docs/RAMAIR.md \"The "
+                   "mesh\"): coarse (the main job), medium, wake (medium's boxes, coarse's skin), fine (medium's "
+                   "boxes, the skin a level finer: rigid wing)"),
     "steps": ("int", 60, 1, 1000000, "time steps of the run"),
     "write_interval": ("int", 0, 0, 1000000,
                        "write the fields (and the coupled canopy's frames) every this many steps; 0: at the end only"),
@@ -155,6 +161,12 @@ SETTINGS = {
                      "yes: snappyHexMesh adds prism layers on the wing whose first cell centre sits at y+ of about "
                      "50 (first layer 0.0022 chord, growing by 1.2 up to half the wall cell): the log-layer band the "
                      "wall functions are valid in (docs/AERODYNAMICS.md rung 1); rigid wing only so far"),
+    "wall_split": ("int", 0, 0, 2,
+                   "rigid wing: after snapping, the cells next to the wing are split at half their height this many "
+                   "times (OpenFOAM's refineWallLayer, edge fraction 0.5): a wall cell of h/2^N, on every face of "
+                   "the skin but those within 8 % of the half-span of the tips (split there, the tip's sharp edge "
+                   "gives inverted cells); 2: y+ about 100 on the coarse mesh (docs/AERODYNAMICS.md rung 2b). "
+                   "3 splits invert cells at the leading edge"),
     "half_domain": (["no", "yes"], "no", None, None,
                     "yes: the half y >= 0 with a symmetry plane at y = 0 (rigid wing in symmetric flow only: half "
                     "the cells for the same answer; the coefficients are the whole wing's)"),
@@ -224,11 +236,14 @@ def read_settings(path):
         line = where.get("rigid_outer", where.get("rigid_inner"))
         raise InputError(f"{path}:{line}: rigid_inner ({values['rigid_inner']:g} chords) must be below rigid_outer "
                          f"({values['rigid_outer']:g}): the rigid part fades out between the two")
+    if values["wall_split"] > 0 and values["prism_layers"] == "yes":
+        raise InputError(f"{path}:{where['wall_split']}: wall_split and prism_layers exclude each other (two ways "
+                         "of making thin cells at the wall)")
     if values["half_domain"] == "yes" and values["mirror_mesh"] == "yes":
         raise InputError(f"{path}:{where['half_domain']}: half_domain and mirror_mesh exclude each other (mirror_mesh "
                          "meshes the half and mirrors it; half_domain keeps the half with a symmetry plane)")
     if values["coupled"] == "yes":
-        for key in ("solver", "half_domain", "prism_layers"):
+        for key in ("solver", "half_domain", "prism_layers", "wall_split"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} {values[key]} is for the rigid wing (coupled no): the "
                                  "coupled canopy moves in time and need not stay symmetric")
@@ -466,6 +481,14 @@ def write_case(settings_path, stl_path, case):
     inside = [lo[0] - 2.0 * c + 0.1137 * d["h0"], 0.0733 * d["h0"], 0.5 * (lo[2] + hi[2]) + 0.1791 * d["h0"]]
     if not all(bmin[i] < inside[i] < bmax[i] for i in range(3)) or lo[0] <= inside[0] <= hi[0]:
         raise InputError("locationInMesh would not lie in the fluid: domain too small")
+    # wall_split: the set of cells refineWallLayer may split (Allrun): all but those near the tips, whose sharp
+    # edge between the skin and the tip rib gives inverted face pyramids when split
+    if s["wall_split"] > 0:
+        keep = 0.92 * max(abs(lo[1]), abs(hi[1]))
+        write(os.path.join(sysd, "topoSetDict"), "dictionary", "topoSetDict", src,
+              "// wall_split: the cells refineWallLayer may split (all but the outer 8 % of the half-span)\n"
+              f"actions ( {{ name wallSplit; type cellSet; action new; source boxToCell;\n"
+              f"  box ({bmin[0] - 1:.6g} {-keep:.6g} {bmin[2] - 1:.6g}) ({bmax[0] + 1:.6g} {keep:.6g} {bmax[2] + 1:.6g}); }} );\n")
     # prism_layers: the first layer's centre at y+ ~ 50 with flat-plate friction at Re_x = 5e5 on the chord
     # (Cf = 0.027 Re_x^(-1/7), White): 0.0022 chord thick, growing by 1.2 until a layer reaches half the wall cell
     if s["prism_layers"] == "yes":
@@ -1325,8 +1348,22 @@ def coupled_summary(case, d):
     }
 
 
+def settings_table():
+    """The settings as a Markdown table (docs/RAMAIR.md "Settings" is this, checked by
+    tests/fluid/test_settings_table.py): key, default, range or choices, meaning."""
+    def num(v):
+        return f"{v:g}" if isinstance(v, float) else str(v)
+    rows = ["| key | default | range | meaning |", "|---|---|---|---|"]
+    for key, (kind, default, lo, hi, text) in SETTINGS.items():
+        dflt = "required" if default is None else num(default)
+        rng = ", ".join(kind) if isinstance(kind, list) else f"{num(lo)} – {num(hi)}" + (" (whole)" if kind == "int" else "")
+        rows.append(f"| `{key}` | {dflt} | {rng} | {text.replace('|', '/')} |")
+    return "\n".join(rows) + "\n"
+
+
 def main(argv):
     cmds = {"generate-args": 1, "check": 1, "write": 3, "structure": 3, "fields": 1, "summary": 1,
+            "settings-table": 0,
             "patch-area": 2, "mirror-check": 1, "mirror-finish": 1, "remesh-dicts": 1}
     if len(argv) < 2 or argv[1] not in cmds or len(argv) != 2 + cmds[argv[1]]:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
@@ -1355,6 +1392,8 @@ def main(argv):
             write_fields(*args)
         elif cmd == "summary":
             summary(*args)
+        elif cmd == "settings-table":
+            sys.stdout.write(settings_table())
         elif cmd == "mirror-check":
             mirror_check(*args)
         elif cmd == "mirror-finish":

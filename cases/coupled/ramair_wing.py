@@ -24,6 +24,8 @@ What it reports (docs/RAMAIR.md, "The summary"):
   the convergence of CL, CD and the centre section's angle to the trim (`trim_reached`, criterion stated);
   Helmbold's lifting-line estimate at the flown attitude.
 """
+import hashlib
+import json
 import math
 import os
 import re
@@ -670,6 +672,9 @@ def analyse(case, rec, c):
     # (g) convergence to the trim
     w["trim"] = trim(c, hist, a_design, q)
 
+    # the error against the converged answer (studies/ramair/trim_study.py), where this case is the main job
+    w["converged_reference"] = converged_reference(case, rec, w)
+
     faces = w["fluid_surface"].pop("_faces")  # arrays for the pictures, not for summary.json
     w["plots"] = plots(case, rec, c, canopy, X, X0, design, end, s_end, w, faces)
     return w
@@ -904,6 +909,45 @@ def trim(c, hist, area, q):
     }
 
 
+CONVERGED = "ramair_convergence.json"  # beside this file (share/fsi), from docs/data
+
+
+def converged_reference(case, rec, w, path=None):
+    """This run's CL, CD and trim angles against the values the convergence study (docs/data/ramair_convergence
+    .json) extrapolated to a fine structure, when this case has the inputs that study ran as the main job (the
+    same structure.yaml, byte for byte, and the same settings); otherwise why there is no reference."""
+    path = path or os.path.join(os.path.dirname(os.path.abspath(__file__)), CONVERGED)
+    if not os.path.exists(path):
+        return {"available": False, "why": f"no {CONVERGED} beside ramair_wing.py"}
+    try:
+        with open(path) as f:
+            ref = json.load(f)
+        inputs, best = ref["main_job_inputs"], ref["converged"]
+    except (OSError, ValueError, KeyError) as e:
+        raise InputError(f"{path}: not a convergence study's result ({e})")
+    yaml_path = os.path.join(case, "structure.yaml")
+    try:
+        with open(yaml_path, "rb") as f:
+            sha = hashlib.sha256(f.read()).hexdigest()
+    except OSError as e:
+        raise InputError(f"{yaml_path}: {e}")
+    if sha != inputs["structure_yaml_sha256"] or rec["settings"] != inputs["settings"]:
+        which = "structure.yaml" if sha != inputs["structure_yaml_sha256"] else "the settings"
+        return {"available": False,
+                "why": f"{which} differ from the main job's the convergence study ran ({ref.get('commit', '?')}): "
+                       "its converged answer is of that wing (docs/AERODYNAMICS.md, rung 3)"}
+    des, a = w["coefficients"]["design_area"], w["section_alpha"]
+    now = {"CL": des["CL_canopy"], "CD": des["CD_canopy"], "CD_system": des["CD_system"],
+           "alpha_centre_deg": a["centre_deg"], "alpha_span_average_deg": a["span_average_deg"]}
+    out = {"available": True, "source": CONVERGED, "commit": ref.get("commit"), "converged_is": ref.get("converged_is")}
+    for k, v in now.items():
+        if k in best:
+            c, bar = best[k]["extrapolated"], best[k]["error_bar"]
+            out[k] = {"this_run": v, "converged": c, "error_bar": bar, "error": v - c,
+                      "relative": (v / c - 1) if not k.startswith("alpha") else None}
+    return out
+
+
 def _num(x, spec):
     return "n/a" if x is None else format(x, spec)
 
@@ -939,7 +983,25 @@ def headline(w):
         f"  trim reached: {'yes' if t['trim_reached'] else 'NO'} (CL {100 * t['CL_change']:.2f} %, CD "
         f"{100 * t['CD_change']:.2f} %, centre alpha {_num(t['centre_alpha_change_deg'], '.3f')} deg over the last "
         f"{100 * TRIM_FRACTION:.0f} %, balance {100 * t['balance']:.3f} %)",
-    ]
+    ] + converged_lines(w.get("converged_reference", {}))
+
+
+def converged_lines(r):
+    if not r.get("available"):
+        return [f"  error against the converged answer: not known here ({r.get('why', 'no reference')})"] if r else []
+    parts = []
+    for k, name in (("CL", "CL"), ("CD", "CD canopy"), ("CD_system", "CD system")):
+        if k in r:
+            x = r[k]
+            parts.append(f"{name} {x['this_run']:.4f} vs {x['converged']:.4f} +- {x['error_bar']:.4f} "
+                         f"({100 * x['relative']:+.1f} %)")
+    for k, name in (("alpha_centre_deg", "centre section"), ("alpha_span_average_deg", "span-averaged section")):
+        if k in r:
+            x = r[k]
+            parts.append(f"{name} {x['this_run']:.2f} vs {x['converged']:.2f} +- {x['error_bar']:.2f} deg "
+                         f"({x['error']:+.2f} deg)")
+    return ["  error against the converged answer (" + r["source"] + ", " + (r.get("converged_is") or "") + "): "
+            + "; ".join(parts)]
 
 
 def table_rows(w):
@@ -1004,6 +1066,10 @@ def table_rows(w):
          f"{_num(t['centre_alpha_change_deg'], '.3f')} deg over the last {100 * TRIM_FRACTION:.0f} % of the windows; "
          f"balance {100 * t['balance']:.3f} %; plots/wing_convergence.png"),
     ]
+    r = w.get("converged_reference")
+    if r:
+        rows.append(("error against the converged answer", "; ".join(converged_lines(r)[0].split(": ", 1)[1:]),
+                     "docs/AERODYNAMICS.md, rung 3"))
     return rows
 
 

@@ -30,6 +30,7 @@ import argparse
 import datetime
 import json
 import math
+import os
 import shutil
 import sys
 from pathlib import Path
@@ -82,7 +83,7 @@ def run(name, out, rerun):
 def collect(name, out):
     kind, _, _, facts = RUNS[name]
     d = out / name
-    row = {"run": name, **facts}
+    row = {"run": name, **facts, "dir": os.path.relpath(d, ROOT)}
     if (d / "wall_seconds").exists():
         row["wall_s"] = float((d / "wall_seconds").read_text())
     if not (d / "summary.json").exists():
@@ -113,29 +114,29 @@ def collect(name, out):
 
 
 def richardson(h, f):
-    """Least-squares fit f = f0 + k h^p over the levels (p from three levels when they are monotone, else 1:
-    the first-order bound), with the error bar |f0 - f(finest)|; None below two levels."""
+    """Least-squares fit f = f0 + k h^p over the levels (h: edge length relative to the main job's). The order
+    p is fitted when three or more levels converge monotonically, else taken as 1 (the cautious bound); the
+    error bar is |f0 - f(finest)|. None below two levels."""
+    import numpy as np
     pts = sorted((hi, fi) for hi, fi in zip(h, f) if fi is not None)
     if len(pts) < 2:
         return None
-    import numpy as np
     hs, fs = np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
+    d = np.diff(fs)
+    monotone = len(pts) >= 3 and (np.all(d > 0) or np.all(d < 0))
+
+    def fit(q):
+        A = np.vstack([np.ones_like(hs), hs ** q]).T
+        coef = np.linalg.lstsq(A, fs, rcond=None)[0]
+        return coef, float(np.sum((A @ coef - fs) ** 2))
+
     p = 1.0
-    if len(pts) >= 3 and (fs[1] - fs[0]) * (fs[2] - fs[1]) > 0:
-        best = None
-        for q in np.linspace(0.3, 4.0, 371):  # the order whose fit has the least residual
-            A = np.vstack([np.ones_like(hs), hs ** q]).T
-            coef, res, *_ = np.linalg.lstsq(A, fs, rcond=None)
-            r = float(np.sum((A @ coef - fs) ** 2))
-            if best is None or r < best[0]:
-                best = (r, q, coef)
-        p = float(best[1])
-    A = np.vstack([np.ones_like(hs), hs ** p]).T
-    coef = np.linalg.lstsq(A, fs, rcond=None)[0]
-    f0 = float(coef[0])
+    if monotone:
+        p = float(min(np.linspace(0.3, 4.0, 3701), key=lambda q: fit(q)[1]))
+    f0 = float(fit(p)[0][0])
     return {"extrapolated": f0, "order": p, "finest": float(fs[0]), "error_bar": abs(f0 - float(fs[0])),
-            "order_is": "fitted over three monotone levels" if len(pts) >= 3 and p != 1.0 or len(pts) >= 3
-            and (fs[1] - fs[0]) * (fs[2] - fs[1]) > 0 else "1 (assumed: fewer than three monotone levels)"}
+            "order_is": "fitted over three or more monotone levels" if monotone
+            else "1 (assumed: fewer than three levels, or they do not converge monotonically)"}
 
 
 def convergence_doc(rows):
@@ -148,8 +149,19 @@ def convergence_doc(rows):
         for key in ("CL", "CD", "CD_system", "alpha_centre_deg", "alpha_span_average_deg", "L_over_D_system"):
             ex[key] = richardson([r["h"] for r in lv], [r[key] for r in lv])
         out["extrapolated"][f] = ex
-    best = out["extrapolated"].get("f2") if all((s, "f2") in ok for s in STRUCTURE_LEVELS) else \
-        out["extrapolated"].get("f1")
+    fbest = "f2" if all((s, "f2") in ok for s in STRUCTURE_LEVELS) else "f1"
+    best = out["extrapolated"].get(fbest)
+    out["converged"] = {k: v for k, v in (best or {}).items() if v}
+    out["converged_is"] = (f"structure h -> 0 (levels s1-s3, bending), fluid level {fbest} "
+                           f"({'the near-wing and wake boxes one level finer' if fbest == 'f2' else 'the main job s mesh'})")
+    if main:
+        import hashlib
+        s_main = json.loads((ROOT / main["dir"] / "summary.json").read_text())
+        out["main_job_inputs"] = {
+            "structure_yaml_sha256": hashlib.sha256((ROOT / main["dir"] / "structure.yaml").read_bytes()).hexdigest(),
+            "settings": s_main["settings"],
+            "is": "the inputs of the run s1-nobend (the case's structure.yaml and coupled.settings): a coupled summary "
+                  "whose case has these states its error against `converged` (ramair_wing.py)"}
     if main and best:
         out["main_job_error"] = {k: {"main_job": main[k], "converged": best[k]["extrapolated"],
                                      "error": main[k] - best[k]["extrapolated"],

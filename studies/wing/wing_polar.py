@@ -42,6 +42,8 @@ VARIANTS = {
     "flat": ({"arc_radius": 0}, 0.0, "no arc (flat span), flat panels between the ribs"),
     "arc": ({}, 0.0, "the arc R/b = 1, flat panels"),
     "bulged": ({}, 0.25, "the arc R/b = 1, the cells bulged by a quarter of their width (the coupled canopy's skin)"),
+    "bulged16": ({"cells": 16}, 0.25, "the arc R/b = 1, 16 cells (half as wide) bulged by a quarter of their width: "
+                                      "the same bulge ratio, half the bulge"),
 }
 
 SETTINGS = """# written by studies/wing/wing_polar.py: rung 2, the rigid wing in steady symmetric flow
@@ -97,7 +99,7 @@ def residuals(case, log="log.simpleFoam"):
 
 def case_dir(out, variant, level, alpha, solver, wall="functions"):
     return (Path(out) / variant / level / (f"a{alpha:g}" + ("" if solver == "simple" else "-pimple")
-                                          + ("" if wall == "functions" else "-layers")))
+                                          + ("" if wall == "functions" else f"-{wall}")))
 
 
 def run_point(out, variant, level, alpha, iterations, env, solver="simple", courant=2.0, flow_time=2.0,
@@ -125,7 +127,8 @@ def run_point(out, variant, level, alpha, iterations, env, solver="simple", cour
         run = f"solver pimple\ncourant {courant:g}\nouter_correctors 2\nsteps {steps}\n"
     (case / "polar.settings").write_text(
         SETTINGS + f"resolution {level}\nangle {alpha - INCIDENCE:g}   # alpha {alpha:g} deg at the centre chord\n"
-        f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n" + run)
+        f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n"
+        f"wall_split {2 if wall == 'split' else 0}\n" + run)
     t0 = time.time()
     # The environment of the build (--env); the arguments are a list, nothing here passes through a shell but
     # the fixed `source` line (the file's path is its $0).
@@ -222,22 +225,22 @@ def plot(path, png):
     pts = data["points"]
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
     styles = {"coarse": "o-", "medium": "s--", "fine": "^:"}
-    colours = {"flat": "C0", "arc": "C1", "bulged": "C3"}
+    colours = {"flat": "C0", "arc": "C1", "bulged": "C3", "bulged16": "C4"}
     for v in VARIANTS:
         for lvl, solver, wall in [(lv, so, wa) for lv in styles for so in ("simple", "pimple")
-                                  for wa in ("functions", "layers")]:
+                                  for wa in ("functions", "layers", "split")]:
             sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl
                           and p.get("solver", "simple") == solver and p.get("wall", "functions") == wall],
                          key=lambda p: p["alpha_deg"])
             if not sel:
                 continue
             lab = (f"{v}, {lvl}" + (", time-averaged" if solver == "pimple" else "")
-                   + (", prism layers" if wall == "layers" else ""))
+                   + (", prism layers" if wall == "layers" else ", wall cells split twice" if wall == "split" else ""))
             a = [p["alpha_deg"] for p in sel]
             # error bars: the range over the last fifth of the iterations where the steady solver did not settle
             lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
             hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
-            col = "C2" if wall == "layers" else colours[v]
+            col = "C2" if wall == "layers" else "C5" if wall == "split" else colours[v]
             ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=styles[lvl], color=col, label=lab,
                            capsize=3, mfc="none" if lvl != "coarse" else None)
             ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], styles[lvl], color=col, label=lab)
@@ -272,7 +275,7 @@ def table(path, linear_max=8.0):
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for v in VARIANTS:
         for lvl in ("coarse", "medium", "fine"):
-            for solver, wall in [(so, wa) for so in ("simple", "pimple") for wa in ("functions", "layers")]:
+            for solver, wall in [(so, wa) for so in ("simple", "pimple") for wa in ("functions", "layers", "split")]:
                 sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl
                               and p.get("solver", "simple") == solver and p.get("wall", "functions") == wall],
                              key=lambda p: p["alpha_deg"])
@@ -303,8 +306,9 @@ def main():
     ap.add_argument("--solver", choices=("simple", "pimple"), default="simple",
                     help="simple: steady simpleFoam; pimple: time-accurate pimpleFoam, the mean over the second half "
                          "(for flow a steady solver cannot settle)")
-    ap.add_argument("--wall", choices=("functions", "layers"), default="functions",
-                    help="functions: the 3D case's mesh, no prism layers; layers: prism_layers yes (y+ ~ 50)")
+    ap.add_argument("--wall", choices=("functions", "layers", "split"), default="functions",
+                    help="functions: the 3D case's mesh, no prism layers; layers: prism_layers yes (y+ ~ 50); "
+                         "split: wall_split 2 (the wall cells split twice, y+ ~ 100)")
     ap.add_argument("--courant", type=float, default=2.0, help="pimple: Courant number on the finest wing cell")
     ap.add_argument("--flow-time", type=float, default=2.0, help="pimple: seconds of flow (30 chord passages at 15 m/s)")
     ap.add_argument("--out", default=str(ROOT / "studies-out/wing"))

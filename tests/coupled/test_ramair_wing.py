@@ -12,7 +12,9 @@ references that do not come from it:
   - Helmbold's slope is ramair_fluid.py's formula; the elliptic distribution's cell means sum to its total;
   - the line drag of a single cable across the wind is 1/2 rho C_D d U^2 L;
   - the OpenFOAM readers: a zeroGradient patch takes its owner cells' values, a nonuniform list is read as
-    written; a face's area vector and centre.
+    written; a face's area vector and centre;
+  - the error against the converged answer is stated for the inputs the convergence study ran and only for
+    them (another settings value, another structure.yaml byte: no reference); a broken reference is refused.
 Usage: test_ramair_wing.py CASES_COUPLED_DIR FSI_BINARY WORK_DIR"""
 import json
 import math
@@ -194,8 +196,44 @@ def main():
         check(False, "a missing mesh is refused")
     except ramair_wing.InputError as e:
         check("missing.msh" in str(e), f"a missing mesh is refused naming it")
+    converged_reference(work)
     print(json.dumps({"failures": len(failures)}))
     return 1 if failures else 0
+
+
+def converged_reference(work):
+    """The summary's error against the converged answer: stated only for the inputs the study ran."""
+    import hashlib
+    case = os.path.join(work, "ref-case")
+    os.makedirs(case, exist_ok=True)
+    with open(os.path.join(case, "structure.yaml"), "w") as f:
+        f.write(SCENE)
+    sha = hashlib.sha256(SCENE.encode()).hexdigest()
+    ref = os.path.join(work, "ramair_convergence.json")
+    conv = {"CL": {"extrapolated": 0.5, "error_bar": 0.01}, "alpha_centre_deg": {"extrapolated": 3.0, "error_bar": 0.2}}
+    with open(ref, "w") as f:
+        json.dump({"commit": "abc", "converged": conv,
+                   "main_job_inputs": {"structure_yaml_sha256": sha, "settings": {"speed": 15.0}}}, f)
+    w = {"coefficients": {"design_area": {"CL_canopy": 0.55, "CD_canopy": 0.1, "CD_system": 0.15}},
+         "section_alpha": {"centre_deg": 2.5, "span_average_deg": 4.0}}
+    r = ramair_wing.converged_reference(case, {"settings": {"speed": 15.0}}, w, ref)
+    check(r["available"] and abs(r["CL"]["relative"] - 0.1) < 1e-12 and abs(r["alpha_centre_deg"]["error"] + 0.5) < 1e-12
+          and "CD" not in r, f"the main job's inputs: CL +10 % and the centre angle -0.5 deg against the reference")
+    line = ramair_wing.converged_lines(r)[0]
+    check("+10.0 %" in line and "-0.50 deg" in line, f"the summary's line states them: {line.strip()}")
+    r = ramair_wing.converged_reference(case, {"settings": {"speed": 12.0}}, w, ref)
+    check(not r["available"] and "settings" in r["why"], f"other settings: no reference ({r['why']})")
+    with open(os.path.join(case, "structure.yaml"), "a") as f:
+        f.write("# a comment is a change\n")
+    r = ramair_wing.converged_reference(case, {"settings": {"speed": 15.0}}, w, ref)
+    check(not r["available"] and "structure.yaml" in r["why"], "another structure.yaml: no reference")
+    with open(ref, "w") as f:
+        f.write("{not json")
+    try:
+        ramair_wing.converged_reference(case, {"settings": {"speed": 15.0}}, w, ref)
+        check(False, "a broken reference file is refused")
+    except ramair_wing.InputError as e:
+        check(ref in str(e), f"a broken reference file is refused naming it: {e}")
 
 
 if __name__ == "__main__":

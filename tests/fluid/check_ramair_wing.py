@@ -143,6 +143,18 @@ def main(case):
     check(t["centre_alpha_change_deg"] is not None and t["centre_alpha_change_deg"] < 0.25,
           "the centre section's angle changed by 0.25 deg or more over the last fifth")
 
+    # the main job states its error against the converged answer of its own inputs (docs/data/ramair_convergence
+    # .json, installed beside ramair_wing.py); a changed main job must re-run studies/ramair/trim_study.py
+    r = w.get("converged_reference", {})
+    if os.environ.get("FSI_EXPECT_CONVERGED_REFERENCE") == "1":
+        check(r.get("available") is True, "the summary states no error against the converged answer: "
+              + r.get("why", "no converged_reference"))
+    if r.get("available"):
+        print(f"error against the converged answer: CL {100 * r['CL']['relative']:+.1f} % "
+              f"({r['CL']['this_run']:.4f} vs {r['CL']['converged']:.4f} +- {r['CL']['error_bar']:.4f})")
+        check(abs(r["CL"]["this_run"] - w["coefficients"]["design_area"]["CL_canopy"]) < 1e-12,
+              "the converged reference's 'this run' CL is not the summary's")
+
     import matplotlib.image
     for name in ("wing_alpha", "wing_lift", "wing_cp", "wing_cp_map", "wing_sections", "wing_convergence", "wing_lines"):
         path = os.path.join(case, "plots", name + ".png")

@@ -19,7 +19,9 @@
 #   wing         the engineer's numbers (summary.json's wing, tests/fluid/check_ramair_wing.py): the confluence
 #                point's tensions balance the anchor's reaction, CD system = CD canopy + CD lines with the line
 #                drag recomputed from the deformed lines, the design ribs' angle = the generator's incidence,
-#                tan(glide) = CD/CL, the wing patch's pressure + shear = the interface lift, the wing plots
+#                tan(glide) = CD/CL, the wing patch's pressure + shear = the interface lift, the pitching moment
+#                = forceCoeffs' CmPitch moved to its CofR, the summary's error against the converged answer
+#                (docs/data/ramair_convergence.json: the inputs the study ran must be the case's), the wing plots
 #   mesh         checkMesh on the mesh as the canopy left it: no failed check but skewness (the faces at the
 #                sharp trailing edge, docs/RAMAIR.md)
 #   outputs      summary.md, the plots and the canopy's picture exist, are PNGs and are not blank; ParaView
@@ -101,6 +103,7 @@ for b in bad:
 sys.exit(1 if bad else 0)
 PY
 rc=$?
+# the main job's case: its summary must state its error against the converged answer of its own inputs
 /usr/bin/python3 "$src/tests/fluid/check_ramair_wing.py" . || rc=1
 [ $rc -eq 0 ] && echo "PASS ramair-kt coupled" || echo "FAIL ramair-kt coupled"
 exit $rc

@@ -58,6 +58,9 @@ bad $'solver simple\ncoupled yes' "is for the rigid wing"
 bad $'half_domain yes\ncoupled yes' "is for the rigid wing"
 bad $'half_domain yes\nmirror_mesh yes' "exclude each other"
 bad $'prism_layers yes\ncoupled yes' "is for the rigid wing"
+bad $'wall_split 1\ncoupled yes' "is for the rigid wing"
+bad $'wall_split 1\nprism_layers yes' "exclude each other"
+bad 'wall_split 3' "wall_split"
 [ ! -e /tmp/ramair-injected ] || fail "a settings value was executed"
 rm -f bad.settings bad.log
 

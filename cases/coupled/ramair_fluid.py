@@ -162,7 +162,7 @@ SETTINGS = {
                      "50 (first layer 0.0022 chord, growing by 1.2 up to half the wall cell): the log-layer band the "
                      "wall functions are valid in (docs/AERODYNAMICS.md rung 1); rigid wing only so far"),
     "wall_split": ("int", 0, 0, 2,
-                   "rigid wing: after snapping, the cells next to the wing are split at half their height this many "
+                   "after snapping, the cells next to the wing are split at half their height this many "
                    "times (OpenFOAM's refineWallLayer, edge fraction 0.5): a wall cell of h/2^N, on every face of "
                    "the skin but those within 8 % of the half-span of the tips (split there, the tip's sharp edge "
                    "gives inverted cells); 2: y+ about 100 on the coarse mesh (docs/AERODYNAMICS.md rung 2b). "
@@ -243,7 +243,7 @@ def read_settings(path):
         raise InputError(f"{path}:{where['half_domain']}: half_domain and mirror_mesh exclude each other (mirror_mesh "
                          "meshes the half and mirrors it; half_domain keeps the half with a symmetry plane)")
     if values["coupled"] == "yes":
-        for key in ("solver", "half_domain", "prism_layers", "wall_split"):
+        for key in ("solver", "half_domain", "prism_layers"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} {values[key]} is for the rigid wing (coupled no): the "
                                  "coupled canopy moves in time and need not stay symmetric")

@@ -2,8 +2,9 @@
 """Rungs 3 and 4 of the fluid validation ladder (issue 33, docs/AERODYNAMICS.md): the coupled ram-air wing of
 cases/coupled/ramair-kt (the main job) at its trim,
 
-  convergence  the same wing at three structure resolutions (chordwise points 20/30/40, span divisions 2/3/4:
-               edge length h = 1, 2/3, 1/2 of the main job's) and two fluid resolutions (the main job's mesh,
+  convergence  the same wing at four structure resolutions (chordwise points 20/30/40/60, span divisions
+               2/3/4/6: edge length h = 1, 2/3, 1/2, 1/3 of the main job's; 60/6 is how finely the fluid's skin
+               samples the generator at every level) and two fluid resolutions (the main job's mesh,
                and `resolution wake`: the near-wing and wake boxes one level finer);
                -> docs/data/ramair_convergence.json (CL, CD, trim angle, trim_reached per level pair);
   polar        the main job's wing at four or more rigging angles (the lines' tilt back, structure.yaml's
@@ -46,8 +47,11 @@ STRUCTURE_LEVELS = {  # name: (h relative to the main job's, generator changes)
     "s1": (1.0, {}),
     "s2": (2.0 / 3.0, {"chordwise_points": 30, "span_divisions": 3}),
     "s3": (0.5, {"chordwise_points": 40, "span_divisions": 4}),
+    "s4": (1.0 / 3.0, {"chordwise_points": 60, "span_divisions": 6}),  # the fluid skin's own sampling
 }
-FLUID_LEVELS = {"f1": {}, "f2": {"resolution": "wake"}}  # f1: the main job's mesh
+# f1: the main job's mesh; f2: finer off the skin; f3: the main job's mesh with its wall cells split twice
+# (wall_split 2: y+ about 170 instead of 450, rung 2b)
+FLUID_LEVELS = {"f1": {}, "f2": {"resolution": "wake"}, "f3": {"wall_split": 2}}
 RIGGING = (9, 11, 15, 17)  # and 13: the main job's, run as s1-nobend
 
 
@@ -114,16 +118,18 @@ def collect(name, out):
 
 
 def richardson(h, f):
-    """Least-squares fit f = f0 + k h^p over the levels (h: edge length relative to the main job's). The order
-    p is fitted when three or more levels converge monotonically, else taken as 1 (the cautious bound); the
-    error bar is |f0 - f(finest)|. None below two levels."""
+    """The value at h -> 0 from the levels (h: edge length relative to the main job's), with an error bar.
+    Three or more levels that converge monotonically: the least-squares fit f = f0 + k h^p with the order p
+    fitted, the error bar |f0 - f(finest)|. Two levels: p = 1 assumed (the cautious bound). Levels that do not
+    converge monotonically are not in the asymptotic range: the finest level's value, with the largest
+    difference between it and any other level as the error bar. None below two levels."""
     import numpy as np
     pts = sorted((hi, fi) for hi, fi in zip(h, f) if fi is not None)
     if len(pts) < 2:
         return None
     hs, fs = np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
     d = np.diff(fs)
-    monotone = len(pts) >= 3 and (np.all(d > 0) or np.all(d < 0))
+    monotone = bool(np.all(d > 0) or np.all(d < 0))
 
     def fit(q):
         A = np.vstack([np.ones_like(hs), hs ** q]).T
@@ -131,29 +137,49 @@ def richardson(h, f):
         return coef, float(np.sum((A @ coef - fs) ** 2))
 
     p = 1.0
-    if monotone:
+    if len(pts) >= 3 and monotone:
         p = float(min(np.linspace(0.3, 4.0, 3701), key=lambda q: fit(q)[1]))
+    if len(pts) >= 3 and (not monotone or not 0.5 <= p <= 3.5):
+        why = ("the levels do not converge monotonically" if not monotone else
+               f"the fitted order {p:.2f} lies outside 0.5-3.5 (the changes do not shrink as a power of h)")
+        return {"extrapolated": float(fs[0]), "order": None, "finest": float(fs[0]),
+                "error_bar": float(np.max(np.abs(fs - fs[0]))),
+                "order_is": f"none: {why}, so not in the asymptotic range; the finest level's value, the error bar "
+                            "its largest difference to another level"}
     f0 = float(fit(p)[0][0])
     return {"extrapolated": f0, "order": p, "finest": float(fs[0]), "error_bar": abs(f0 - float(fs[0])),
-            "order_is": "fitted over three or more monotone levels" if monotone
-            else "1 (assumed: fewer than three levels, or they do not converge monotonically)"}
+            "order_is": "fitted over three or more monotone levels" if len(pts) >= 3
+            else "1 (assumed: two levels)"}
+
+
+KEYS = ("CL", "CD", "CD_system", "alpha_centre_deg", "alpha_span_average_deg", "L_over_D_system")
 
 
 def convergence_doc(rows):
+    """The structure levels extrapolated on each fluid level; the fluid levels' effect where a structure level
+    ran on more than one; the converged answer (the structure extrapolation on the main job's fluid mesh, its
+    error bar the structure's plus the largest fluid-level change); the main job's error against it."""
     ok = {(r["structure"], r["fluid"]): r for r in rows if "CL" in r and r.get("bending")}
     main = next((r for r in rows if r["run"] == "s1-nobend" and "CL" in r), None)
-    out = {"levels": rows, "extrapolated": {}}
+    out = {"levels": rows, "extrapolated": {}, "fluid_effect": {}}
     for f in FLUID_LEVELS:
         lv = [ok[(s, f)] for s in STRUCTURE_LEVELS if (s, f) in ok]
-        ex = {}
-        for key in ("CL", "CD", "CD_system", "alpha_centre_deg", "alpha_span_average_deg", "L_over_D_system"):
-            ex[key] = richardson([r["h"] for r in lv], [r[key] for r in lv])
-        out["extrapolated"][f] = ex
-    fbest = "f2" if all((s, "f2") in ok for s in STRUCTURE_LEVELS) else "f1"
-    best = out["extrapolated"].get(fbest)
-    out["converged"] = {k: v for k, v in (best or {}).items() if v}
-    out["converged_is"] = (f"structure h -> 0 (levels s1-s3, bending), fluid level {fbest} "
-                           f"({'the near-wing and wake boxes one level finer' if fbest == 'f2' else 'the main job s mesh'})")
+        out["extrapolated"][f] = {k: richardson([r["h"] for r in lv], [r[k] for r in lv]) for k in KEYS}
+        if f != "f1":
+            out["fluid_effect"][f] = {s: {k: ok[(s, f)][k] - ok[(s, "f1")][k] for k in KEYS}
+                                      for s in STRUCTURE_LEVELS if (s, f) in ok and (s, "f1") in ok}
+    out["fluid_effect_is"] = "the value on fluid level f minus the value on f1 (the main job's mesh), same structure level"
+    conv = {}
+    for k, ex in out["extrapolated"]["f1"].items():
+        if not ex:
+            continue
+        fl = [abs(e[k]) for f in out["fluid_effect"].values() for e in f.values()]
+        conv[k] = {**ex, "structure_error_bar": ex["error_bar"], "fluid_error_bar": max(fl) if fl else None,
+                   "error_bar": ex["error_bar"] + (max(fl) if fl else 0.0)}
+    out["converged"] = conv
+    out["converged_is"] = ("structure h -> 0 over the levels s1-s4 (bending) on the main job's fluid mesh; error bar = "
+                           "the structure extrapolation's + the largest change a finer fluid level made "
+                           f"({', '.join(f for f in out['fluid_effect'] if out['fluid_effect'][f]) or 'none run'})")
     if main:
         import hashlib
         s_main = json.loads((ROOT / main["dir"] / "summary.json").read_text())
@@ -162,17 +188,11 @@ def convergence_doc(rows):
             "settings": s_main["settings"],
             "is": "the inputs of the run s1-nobend (the case's structure.yaml and coupled.settings): a coupled summary "
                   "whose case has these states its error against `converged` (ramair_wing.py)"}
-    if main and best:
-        out["main_job_error"] = {k: {"main_job": main[k], "converged": best[k]["extrapolated"],
-                                     "error": main[k] - best[k]["extrapolated"],
-                                     "relative": (main[k] / best[k]["extrapolated"] - 1) if k != "alpha_centre_deg"
-                                     and k != "alpha_span_average_deg" else None,
-                                     "error_bar_of_converged": best[k]["error_bar"]}
-                                 for k in ("CL", "CD", "CD_system", "alpha_centre_deg", "alpha_span_average_deg")
-                                 if best.get(k)}
-        out["main_job_error_is"] = ("the main job (s1-nobend: structure level s1 without bending, fluid f1) against "
-                                    "the value extrapolated to h -> 0 over the structure levels on the finest fluid "
-                                    "level all three reached (f2 if it did, else f1)")
+        out["main_job_error"] = {k: {"main_job": main[k], "converged": c["extrapolated"],
+                                     "error": main[k] - c["extrapolated"],
+                                     "relative": None if k.startswith("alpha") else main[k] / c["extrapolated"] - 1,
+                                     "error_bar_of_converged": c["error_bar"]} for k, c in conv.items()}
+        out["main_job_error_is"] = "the main job (s1-nobend: level s1 without bending, fluid f1) against `converged`"
     return out
 
 
@@ -188,8 +208,9 @@ def plot_convergence(doc, png):
             sel = sorted((r for r in rows if r["fluid"] == f), key=lambda r: r["h"])
             if not sel:
                 continue
-            ax[k].plot([r["h"] for r in sel], [r[key] for r in sel], "o-" if f == "f1" else "s--", color=f"C{j}",
-                       label={"f1": "fluid: main job's mesh", "f2": "fluid: wake (finer off the skin)"}[f])
+            ax[k].plot([r["h"] for r in sel], [r[key] for r in sel], {"f1": "o-", "f2": "s--", "f3": "D:"}[f], color=f"C{j}",
+                       label={"f1": "fluid: main job's mesh", "f2": "fluid: wake (finer off the skin)",
+                              "f3": "fluid: main job's mesh, wall cells split twice"}[f])
             for r in sel:
                 if not r["trim_reached"]:
                     ax[k].plot(r["h"], r[key], "x", color="k", ms=10)
@@ -214,7 +235,7 @@ def plot_polar(rows, png, rigid=None):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     rows = sorted((r for r in rows if "CL" in r), key=lambda r: r["rigging_angle_deg"])
-    fig, ax = plt.subplots(1, 4, figsize=(16, 4))
+    fig, ax = plt.subplots(1, 4, figsize=(17, 4.6))
     a = [r["alpha_span_average_deg"] for r in rows]
     rig = [r["rigging_angle_deg"] for r in rows]
     ax[0].plot(rig, [r["alpha_centre_deg"] for r in rows], "o-", label="centre section")
@@ -225,15 +246,16 @@ def plot_polar(rows, png, rigid=None):
     ax[1].plot(ac, [r["CL"] for r in rows], "o-", label="flexible, coupled (design area), x: centre section")
     ax[1].plot(a, [r["CL"] for r in rows], "s:", label="flexible, coupled (design area), x: span average")
     if rigid:
-        ax[1].plot(rigid["alpha"], rigid["CL"], "k^--", label=rigid["label"])
-        est = rigid.get("estimate")
-        if est:
-            ax[1].plot(est["alpha"], est["CL"], "k-", lw=0.8, label=est["label"])
+        for r in rigid["series"]:
+            ax[1].plot(r["alpha"], r["CL"], r["style"], label=r["label"], mfc="none")
+        est = rigid["estimate"]
+        ax[1].plot(est["alpha"], est["CL"], "k-", lw=0.8, label=est["label"])
     ax[1].set(xlabel="section angle of attack [deg]", ylabel="CL", title="lift")
     ax[2].plot([r["CD"] for r in rows], [r["CL"] for r in rows], "o-", label="canopy")
     ax[2].plot([r["CD_system"] for r in rows], [r["CL"] for r in rows], "s-", label="system (canopy + lines)")
     if rigid:
-        ax[2].plot(rigid["CD"], rigid["CL"], "k^--", label=rigid["label"])
+        for r in rigid["series"]:
+            ax[2].plot(r["CD"], r["CL"], r["style"], label=r["label"], mfc="none")
     ax[2].set(xlabel="CD", ylabel="CL", title="drag polar (design area)")
     ax[3].plot(rig, [r["L_over_D_system"] for r in rows], "s-", label="L/D system")
     ax[3].plot(rig, [r["L_over_D_canopy"] for r in rows], "o-", label="L/D canopy")
@@ -242,9 +264,9 @@ def plot_polar(rows, png, rigid=None):
         b.plot(rig, [r["Cm"] for r in rows], "d:", color="C3", label="Cm (quarter chord)")
         b.set_ylabel("Cm about the centre section's quarter chord", color="C3")
     ax[3].set(xlabel="rigging angle [deg]", title="glide ratio and pitching moment")
-    for x in ax:
+    for k, x in enumerate(ax):
         x.grid(alpha=0.3)
-        x.legend(fontsize=7)
+        x.legend(fontsize=6.5, loc="lower right" if k in (1, 2) else "best")
     for r in rows:
         if not r["trim_reached"]:
             ax[0].annotate("trim not reached", (r["rigging_angle_deg"], r["alpha_centre_deg"]), fontsize=7)
@@ -254,26 +276,33 @@ def plot_polar(rows, png, rigid=None):
 
 
 def rigid_polar():
-    """Rung 2's rigid arc wing (flat panels, medium mesh, steady, docs/data/wing_polar.json) and Helmbold's
-    lifting line with the arc factor from rung 1's zero-lift angle, for the plot; x: the centre section's angle."""
+    """Rung 2's rigid wings (docs/data/wing_polar.json) and Helmbold's lifting line with the arc factor from rung
+    1's zero-lift angle, for the plot; x: the centre section's angle. Series: the arc wing with flat panels
+    (medium, steady), the scene's bulged cells (coarse, time-averaged) and 16 bulged cells (coarse, steady)."""
     p = ROOT / "docs/data/wing_polar.json"
     if not p.exists():
         return None
     d = json.loads(p.read_text())
-    pts = [r for r in d.get("points", []) if r.get("variant") == "arc" and r.get("level") == "medium"
-           and r.get("solver") == "simple" and r.get("wall") == "functions" and "CL" in r]
-    if not pts:
+    series = []
+    for variant, level, solver, label, style in (
+            ("arc", "medium", "simple", "rigid arc wing, flat panels (rung 2, medium)", "k^--"),
+            ("bulged", "coarse", "pimple", "rigid, the scene's 8 bulged cells (coarse, time-averaged)", "rv--"),
+            ("bulged16", "coarse", "simple", "rigid, 16 bulged cells (coarse)", "m<--")):
+        pts = sorted((r for r in d.get("points", []) if r.get("variant") == variant and r.get("level") == level
+                      and r.get("solver") == solver and r.get("wall") == "functions" and "CL" in r),
+                     key=lambda r: r["alpha_deg"])
+        if pts:
+            series.append({"alpha": [r["alpha_deg"] for r in pts], "CL": [r["CL"] for r in pts],
+                           "CD": [r["CD"] for r in pts], "label": label, "style": style,
+                           "aspect_ratio": pts[0]["aspect_ratio"]})
+    if not series:
         return None
-    pts.sort(key=lambda r: r["alpha_deg"])
-    ar, R = pts[0]["aspect_ratio"], 3.0
     sys.path.insert(0, str(ROOT / "studies/wing"))
     from wing_polar import helmbold  # noqa: E402
-    eps = 3.0 / (2 * R)  # the half-arc angle of the design's 3 m arc length on R = 3 m
-    slope = helmbold(ar, eps)
+    slope = helmbold(series[0]["aspect_ratio"], 0.5)  # the half-arc angle of the 3 m arc on R = 3 m: 0.5 rad
     alpha0 = -3.72  # rung 1: NACA 4415, fine layers (docs/data/section_polar.json)
     est_a = [-4.0, 12.0]
-    return {"alpha": [r["alpha_deg"] for r in pts], "CL": [r["CL"] for r in pts], "CD": [r["CD"] for r in pts],
-            "label": "rigid arc wing, flat panels (rung 2, medium)",
+    return {"series": series,
             "estimate": {"alpha": est_a, "CL": [slope * math.radians(a - alpha0) for a in est_a],
                          "label": f"Helmbold x arc ({slope:.2f}/rad), alpha0 {alpha0} deg"}}
 

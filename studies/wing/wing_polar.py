@@ -240,11 +240,12 @@ def plot(path, png):
             # error bars: the range over the last fifth of the iterations where the steady solver did not settle
             lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
             hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
-            col = "C2" if wall == "layers" else "C5" if wall == "split" else colours[v]
-            ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=styles[lvl], color=col, label=lab,
+            col = "C2" if wall == "layers" else colours[v]
+            fmt = "D-." if wall == "split" else styles[lvl]
+            ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=fmt, color=col, label=lab,
                            capsize=3, mfc="none" if lvl != "coarse" else None)
-            ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], styles[lvl], color=col, label=lab)
-            ax[2].plot(a, [p["Cm"] for p in sel], styles[lvl], color=col, label=lab)
+            ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], fmt, color=col, label=lab)
+            ax[2].plot(a, [p["Cm"] for p in sel], fmt, color=col, label=lab)
     ar = next((p["aspect_ratio"] for p in pts if p["variant"] == "flat"), 3.0)
     alpha0 = data.get("alpha0_section_deg", -4.15)
     al = [-4 + 0.5 * i for i in range(33)]

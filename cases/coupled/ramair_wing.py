@@ -931,7 +931,7 @@ def converged_reference(case, rec, w, path=None):
             sha = hashlib.sha256(f.read()).hexdigest()
     except OSError as e:
         raise InputError(f"{yaml_path}: {e}")
-    if sha != inputs["structure_yaml_sha256"] or rec["settings"] != inputs["settings"]:
+    if sha != inputs["structure_yaml_sha256"] or not same_settings(rec["settings"], inputs["settings"]):
         which = "structure.yaml" if sha != inputs["structure_yaml_sha256"] else "the settings"
         return {"available": False,
                 "why": f"{which} differ from the main job's the convergence study ran ({ref.get('commit', '?')}): "
@@ -946,6 +946,14 @@ def converged_reference(case, rec, w, path=None):
             out[k] = {"this_run": v, "converged": c, "error_bar": bar, "error": v - c,
                       "relative": (v / c - 1) if not k.startswith("alpha") else None}
     return out
+
+
+def same_settings(a, b):
+    """Two settings records alike, a key missing from one standing for its default (a setting added after the
+    study ran, at its default, changes nothing)."""
+    import ramair_fluid  # same folder; the settings' defaults
+    default = {k: v[1] for k, v in ramair_fluid.SETTINGS.items()}
+    return all(a.get(k, default.get(k)) == b.get(k, default.get(k)) for k in set(a) | set(b))
 
 
 def _num(x, spec):

@@ -221,6 +221,10 @@ def converged_reference(work):
           and "CD" not in r, f"the main job's inputs: CL +10 % and the centre angle -0.5 deg against the reference")
     line = ramair_wing.converged_lines(r)[0]
     check("+10.0 %" in line and "-0.50 deg" in line, f"the summary's line states them: {line.strip()}")
+    r = ramair_wing.converged_reference(case, {"settings": {"speed": 15.0, "wall_split": 0}}, w, ref)
+    check(r["available"], "a setting the study did not record, at its default, changes nothing")
+    r = ramair_wing.converged_reference(case, {"settings": {"speed": 15.0, "wall_split": 1}}, w, ref)
+    check(not r["available"], "the same setting away from its default: no reference")
     r = ramair_wing.converged_reference(case, {"settings": {"speed": 12.0}}, w, ref)
     check(not r["available"] and "settings" in r["why"], f"other settings: no reference ({r['why']})")
     with open(os.path.join(case, "structure.yaml"), "a") as f:

@@ -16,6 +16,8 @@ Usage (run by the case's Allrun; /usr/bin/python3, standard library only):
                                               snappyHexMesh, from constant/fluidSettings.json
   ramair_fluid.py summary CASE                summary.json from the logs, postProcessing/ and constant/polyMesh
   ramair_fluid.py settings-table              the settings as a Markdown table (docs/RAMAIR.md "Settings")
+  ramair_fluid.py courant-check LOG SETTINGS  exit 1 naming the step when LOG's Courant number ran away (past
+                                              100 x the settings' courant, or NaN): the flow diverged
   ramair_fluid.py patch-area CASE PATCH       area of a boundary patch of constant/polyMesh (ASCII)
   ramair_fluid.py mirror-check CASE           mirror_mesh yes, before mirrorMesh: every point of the patch
                                               `mirror` lies on the plane y = 0
@@ -1352,6 +1354,29 @@ def coupled_summary(case, d):
     }
 
 
+def courant_check(log_path, settings_path):
+    """A pimpleFoam log whose Courant number ran away (past 100 times the settings' `courant`, or not a number):
+    the message naming the log, the worst Courant number and its time; None when the run stayed sane."""
+    limit = 100 * read_settings(settings_path)["courant"]
+    worst, when, t = None, None, None
+    try:
+        with open(log_path, errors="replace") as f:
+            for line in f:
+                if line.startswith("Time = "):
+                    t = line.split()[2]
+                elif line.startswith("Courant Number mean:"):
+                    v = float(line.split()[-1])
+                    if worst is None or (worst == worst and not v <= worst):  # a NaN is the worst and stays
+                        worst, when = v, t
+    except (OSError, ValueError, IndexError) as e:
+        raise InputError(f"{log_path}: cannot read its Courant numbers ({e})")
+    if worst is not None and not worst <= limit:
+        return (f"{log_path}: the flow diverged: Courant number {worst:.4g} at t = {when} s, more than 100 times the "
+                f"asked {limit / 100:g}: lower courant in {settings_path} (thin wall cells, wall_split, need a "
+                "smaller step)")
+    return None
+
+
 def settings_table():
     """The settings as a Markdown table (docs/RAMAIR.md "Settings" is this, checked by
     tests/fluid/test_settings_table.py): key, default, range or choices, meaning."""
@@ -1367,7 +1392,7 @@ def settings_table():
 
 def main(argv):
     cmds = {"generate-args": 1, "check": 1, "write": 3, "structure": 3, "fields": 1, "summary": 1,
-            "settings-table": 0,
+            "settings-table": 0, "courant-check": 2,
             "patch-area": 2, "mirror-check": 1, "mirror-finish": 1, "remesh-dicts": 1}
     if len(argv) < 2 or argv[1] not in cmds or len(argv) != 2 + cmds[argv[1]]:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
@@ -1398,6 +1423,11 @@ def main(argv):
             summary(*args)
         elif cmd == "settings-table":
             sys.stdout.write(settings_table())
+        elif cmd == "courant-check":
+            msg = courant_check(*args)
+            if msg:
+                print(f"ramair_fluid: {msg}", file=sys.stderr)
+                return 1
         elif cmd == "mirror-check":
             mirror_check(*args)
         elif cmd == "mirror-finish":

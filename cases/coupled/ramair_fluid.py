@@ -164,11 +164,11 @@ SETTINGS = {
                      "50 (first layer 0.0022 chord, growing by 1.2 up to half the wall cell): the log-layer band the "
                      "wall functions are valid in (docs/AERODYNAMICS.md rung 1); rigid wing only so far"),
     "wall_split": ("int", 0, 0, 2,
-                   "rigid wing: after snapping, the cells next to the wing are split at half their height this many "
+                   "after snapping, the cells next to the wing are split at half their height this many "
                    "times (OpenFOAM's refineWallLayer, edge fraction 0.5): a wall cell of h/2^N, on every face of "
                    "the skin but those within 8 % of the half-span of the tips (split there, the tip's sharp edge "
                    "gives inverted cells); 2: y+ about 100 on the coarse mesh (docs/AERODYNAMICS.md rung 2b). "
-                   "3 splits invert cells at the leading edge"),
+                   "3 splits invert cells at the leading edge; coupled yes needs courant <= 4 / 2^N"),
     "half_domain": (["no", "yes"], "no", None, None,
                     "yes: the half y >= 0 with a symmetry plane at y = 0 (rigid wing in symmetric flow only: half "
                     "the cells for the same answer; the coefficients are the whole wing's)"),
@@ -238,10 +238,11 @@ def read_settings(path):
         line = where.get("rigid_outer", where.get("rigid_inner"))
         raise InputError(f"{path}:{line}: rigid_inner ({values['rigid_inner']:g} chords) must be below rigid_outer "
                          f"({values['rigid_outer']:g}): the rigid part fades out between the two")
-    if values["wall_split"] > 0 and values["coupled"] == "yes":
-        raise InputError(f"{path}:{where['wall_split']}: wall_split with coupled yes: the split cells are 2^N times "
-                         "thinner than the step's Courant cell, and the coupled run's rigid start diverged at the "
-                         "main job's step (docs/AERODYNAMICS.md rung 3); rigid wing only so far")
+    if values["wall_split"] > 0 and values["coupled"] == "yes" and values["courant"] * 2 ** values["wall_split"] > 4.0 + 1e-9:
+        raise InputError(f"{path}:{where['wall_split']}: wall_split {values['wall_split']} with coupled yes needs courant "
+                         f"<= {4.0 / 2 ** values['wall_split']:g} (4 / 2^N, now {values['courant']:g}): the split cells "
+                         "are 2^N times thinner than the cell the step is set on, and at the main job's step the rigid "
+                         "start diverged (docs/AERODYNAMICS.md rung 3)")
     if values["wall_split"] > 0 and values["prism_layers"] == "yes":
         raise InputError(f"{path}:{where['wall_split']}: wall_split and prism_layers exclude each other (two ways "
                          "of making thin cells at the wall)")

@@ -69,6 +69,13 @@ def runs():
     out["s4-eq600"] = ("convergence", {"equilibrium_steps": 600}, {**STRUCTURE_LEVELS["s4"][1], **BENDING},
                        {"structure": "s4", "fluid": "f1", "h": STRUCTURE_LEVELS["s4"][0], "bending": True,
                         "variant": "equilibrium_steps 600 (3 x the main job's)"})
+    # the main job's mesh with its wall cells split twice (y+ ~ 180 instead of ~ 450, rung 2b) at a quarter of
+    # the step (Courant 1 on the unsplit cell: 4 on the split one), the same flow times and the same
+    # equilibrium pseudo-steps per second of flow
+    out["s1-f3"] = ("convergence", {"wall_split": 2, "courant": 1, "steps": 2400, "rigid_steps": 720,
+                                    "carry_after": 800, "write_interval": 80, "equilibrium_steps": 50},
+                    BENDING, {"structure": "s1", "fluid": "f3", "h": 1.0, "bending": True,
+                              "variant": "wall cells split twice (wall_split 2), a quarter of the step"})
     for r in RIGGING:
         out[f"rig{r:02d}"] = ("polar", {}, {"rigging_angle": r}, {"rigging_angle_deg": r})
     return out

@@ -995,8 +995,18 @@ def headline(w):
 
 
 def converged_lines(r):
+    if not r:
+        return []
     if not r.get("available"):
-        return [f"  error against the converged answer: not known here ({r.get('why', 'no reference')})"] if r else []
+        return [f"  error against the converged answer: {converged_text(r)}"]
+    return ["  error against the converged answer (" + r["source"] + ", " + (r.get("converged_is") or "") + "): "
+            + converged_text(r)]
+
+
+def converged_text(r):
+    """The figures of converged_reference's result (or why there are none), for the console and summary.md."""
+    if not r.get("available"):
+        return f"not known here ({r.get('why', 'no reference')})"
     parts = []
     for k, name in (("CL", "CL"), ("CD", "CD canopy"), ("CD_system", "CD system")):
         if k in r:
@@ -1008,8 +1018,7 @@ def converged_lines(r):
             x = r[k]
             parts.append(f"{name} {x['this_run']:.2f} vs {x['converged']:.2f} +- {x['error_bar']:.2f} deg "
                          f"({x['error']:+.2f} deg)")
-    return ["  error against the converged answer (" + r["source"] + ", " + (r.get("converged_is") or "") + "): "
-            + "; ".join(parts)]
+    return "; ".join(parts)
 
 
 def table_rows(w):
@@ -1076,8 +1085,8 @@ def table_rows(w):
     ]
     r = w.get("converged_reference")
     if r:
-        rows.append(("error against the converged answer", "; ".join(converged_lines(r)[0].split(": ", 1)[1:]),
-                     "docs/AERODYNAMICS.md, rung 3"))
+        rows.append(("error against the converged answer", converged_text(r),
+                     (r.get("converged_is") or "") + "; docs/AERODYNAMICS.md, rung 3"))
     return rows
 
 

@@ -282,7 +282,9 @@ for label in adapter coupled; do
 done
 grep -E "tests passed|Total Test time" "$logs/test.log" | sed 's/^ *[0-9]* /[fresh]   /'
 awk '/Label Time Summary/ { on = 1; next } on && NF < 2 { on = 0 } on { $1 = ""; print "[fresh]   " $0 }' "$logs/test.log"
-# the ten slowest tests (where CI's time goes): ctest's "N/M Test #K: NAME ....   Passed   S sec" lines
+# the ten slowest tests (where CI's time goes): ctest's "N/M Test #K: NAME ....   Passed   S sec" lines.
+# awk, not head, takes the first ten: head closing the pipe early makes sort die of SIGPIPE, and pipefail
+# turned that into this script's exit code 141 after a suite that passed (CI of 0cdbce4).
 awk '$2 ~ /^[0-9]+\/[0-9]+$/ && $3 == "Test" && $(NF) == "sec" { print $(NF - 1), $5 }' "$logs/test.log" |
-  sort -rn | head -10 | awk '{ printf "[fresh]   slowest: %7.1f s  %s\n", $1, $2 }'
+  sort -rn | awk 'NR <= 10 { printf "[fresh]   slowest: %7.1f s  %s\n", $1, $2 }'
 say "PASS: the README's commands work on a fresh minimal Debian 12"

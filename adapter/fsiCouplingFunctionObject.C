@@ -185,6 +185,7 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
                                  << " needs meshGuard yes and a value above minVolumeRatio "
                                  << o.real("minVolumeRatio") << " (the guard's stop)" << exit(FatalIOError);
   if (meshGuard_) meshGuard_->setRemeshBelow(o.real("remeshBelow"));
+  remeshAt_ = o.real("remeshAt");
   if (o.given("remeshSurface") && patchIDs_.size() != 1)
     FatalIOErrorInFunction(dict) << "fsiCoupling: remeshSurface is the skin of one interface patch; this run "
                                  << "couples " << patchIDs_.size() << " patches" << exit(FatalIOError);
@@ -690,6 +691,16 @@ void fsiCoupling::checkMesh() {
                        << "directory is left as it is." << exit(FatalError);
 }
 
+void fsiCoupling::checkRemeshAt() {
+  if (remeshAt_ <= 0 || remeshRequested_) return;
+  const scalar half = 0.5 * time_.deltaTValue();  // the step's time, not its rounding
+  if (segmentStart_ >= remeshAt_ - half || time_.value() < remeshAt_ - half) return;
+  remeshRequested_ = true;
+  std::ostringstream why;
+  why << "remeshAt " << remeshAt_ << " s reached";
+  remeshReason_ = why.str();
+}
+
 void fsiCoupling::logWindow(const vector& fluidTotal, const std::vector<double>& loads, bool finished) {
   if (!Pstream::master()) return;
   // The fluid's load as transferred to the structure nodes (the transfer's conservation check; with
@@ -792,6 +803,7 @@ bool fsiCoupling::execute() {
 
   // Before the structure takes a load computed on a crushed mesh (its time is reported on its own).
   checkMesh();
+  checkRemeshAt();
   const auto t0 = Clock::now();
   vector fluidTotal;
   const std::vector<double> loads = structureLoads(fluidTotal);

@@ -23,6 +23,15 @@ Usage (run by the case's Allrun; /usr/bin/python3, standard library only):
                                               `mirror` lies on the plane y = 0
   ramair_fluid.py mirror-finish CASE          after mirrorMesh: the patch `mirror` has no faces left (all
                                               merged); removes it from constant/polyMesh/boundary
+  ramair_fluid.py remesh-dicts CASE           a new mesh's background block over the whole box (remeshing)
+  ramair_fluid.py split-exclude CASE LOG     after wall_split's splits and checkMesh LOG: exit 0 when the mesh
+                                              passes; exit 3 when it has wrong-oriented faces, whose spots
+                                              system/topoSetDict now leaves unsplit (split again)
+  ramair_fluid.py mesh-gate CASE LOG         exit 1 when a new mesh's checkMesh LOG failed anything but the
+                                              skewness check (Allrun's remesh loop, before the run goes on)
+  ramair_fluid.py split-stage CASE T DT       a new mesh at time T on a controlDict with step DT: `split N`,
+                                              `layers yes|no`, and at wall_after's time that stage's step,
+                                              write interval and equilibrium steps (`key value` lines)
 
 Why a generator rather than static dictionaries edited with foamDictionary/sed: the dictionaries depend on the
 wing's size and position (domain, refinement boxes, locationInMesh outside the body, reference area), on
@@ -167,8 +176,22 @@ SETTINGS = {
                    "after snapping, the cells next to the wing are split at half their height this many "
                    "times (OpenFOAM's refineWallLayer, edge fraction 0.5): a wall cell of h/2^N, on every face of "
                    "the skin but those within 8 % of the half-span of the tips (split there, the tip's sharp edge "
-                   "gives inverted cells); 2: y+ about 100 on the coarse mesh (docs/AERODYNAMICS.md rung 2b). "
-                   "3 splits invert cells at the leading edge; coupled yes needs courant <= 4 / 2^N"),
+                   "gives inverted cells), nor around spots where a split made wrong-oriented faces (Allrun splits again "
+                   "without them, checkMesh.split*); 2: y+ about 100 on the coarse mesh (docs/AERODYNAMICS.md rung 2b). "
+                   "3 splits invert cells at the leading edge; coupled yes needs courant <= 4 / 2^N, or wall_after"),
+    "wall_layers": ("int", 0, 0, 5,
+                    "snappyHexMesh adds this many prism layers on the wing, sized on the wall cell (the outermost "
+                    "0.4 of it, each inner one 1.3 times thinner; where the skin allows: 1.8 on average, 58 % of "
+                    "the thickness, on the coarse mesh around the trimmed canopy); the first layer is about 1/F of "
+                    "the wall cell, F = round(1.3^(N-1) / 0.4) (4 for 3 layers); coupled yes needs courant <= 4 / F, "
+                    "or wall_after"),
+    "wall_after": ("int", 0, 0, 1000000,
+                   "coupled yes with wall_split or wall_layers: the first this many steps run on the plain mesh at "
+                   "`courant`; then the run stops (the adapter's remeshAt), a new mesh with the thin wall cells is "
+                   "snapped to the canopy as it is, and the run goes on to the same end time with the step and "
+                   "equilibrium_steps divided by F (2^N for wall_split, wall_layers' F) and write_interval "
+                   "multiplied by it (the same flow time and pseudo-steps per second, on wall cells F times "
+                   "thinner); 0: the thin wall cells from the start"),
     "half_domain": (["no", "yes"], "no", None, None,
                     "yes: the half y >= 0 with a symmetry plane at y = 0 (rigid wing in symmetric flow only: half "
                     "the cells for the same answer; the coefficients are the whole wing's)"),
@@ -238,11 +261,27 @@ def read_settings(path):
         line = where.get("rigid_outer", where.get("rigid_inner"))
         raise InputError(f"{path}:{line}: rigid_inner ({values['rigid_inner']:g} chords) must be below rigid_outer "
                          f"({values['rigid_outer']:g}): the rigid part fades out between the two")
-    if values["wall_split"] > 0 and values["coupled"] == "yes" and values["courant"] * 2 ** values["wall_split"] > 4.0 + 1e-9:
-        raise InputError(f"{path}:{where['wall_split']}: wall_split {values['wall_split']} with coupled yes needs courant "
-                         f"<= {4.0 / 2 ** values['wall_split']:g} (4 / 2^N, now {values['courant']:g}): the split cells "
-                         "are 2^N times thinner than the cell the step is set on, and at the main job's step the rigid "
-                         "start diverged (docs/AERODYNAMICS.md rung 3)")
+    thin = "wall_split" if values["wall_split"] > 0 else "wall_layers" if values["wall_layers"] > 0 else None
+    if values["wall_after"] > 0:
+        line = where["wall_after"]
+        if values["coupled"] != "yes" or thin is None:
+            raise InputError(f"{path}:{line}: wall_after needs coupled yes and wall_split or wall_layers (it makes the "
+                             "wall cells of a coupled run thin part way through)")
+        if values["wall_after"] >= values["steps"]:
+            raise InputError(f"{path}:{line}: wall_after {values['wall_after']} must be below steps "
+                             f"{values['steps']} (the mesh with thin wall cells would never run)")
+    elif thin and values["coupled"] == "yes" and values["courant"] * wall_factor(values) > 4.0 + 1e-9:
+        n = values[thin]
+        raise InputError(f"{path}:{where[thin]}: {thin} {n} with coupled yes needs courant "
+                         f"<= {4.0 / wall_factor(values):g} (4 / {wall_factor(values)}, now {values['courant']:g}), or "
+                         "wall_after: the wall cells are that many times thinner than the cell the step is set on, and at "
+                         "the main job's step the rigid start diverged (docs/AERODYNAMICS.md rung 3)")
+    if values["wall_split"] > 0 and values["wall_layers"] > 0:
+        raise InputError(f"{path}:{where['wall_layers']}: wall_split and wall_layers exclude each other (two ways of "
+                         "making thin cells at the wall)")
+    if values["wall_layers"] > 0 and values["prism_layers"] == "yes":
+        raise InputError(f"{path}:{where['wall_layers']}: wall_layers and prism_layers exclude each other (two layer "
+                         "specifications)")
     if values["wall_split"] > 0 and values["prism_layers"] == "yes":
         raise InputError(f"{path}:{where['wall_split']}: wall_split and prism_layers exclude each other (two ways "
                          "of making thin cells at the wall)")
@@ -267,6 +306,16 @@ def read_settings(path):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} needs coupled yes (the rigid wing has no structure)")
     return values
+
+
+def wall_factor(s):
+    """How many times thinner than the wall cell the thin wall cells are: 2^N for wall_split N, the first layer's
+    ratio for wall_layers N (the outermost 0.4 of the cell, each inner one 1.3 times thinner), 1 for neither."""
+    if s["wall_split"] > 0:
+        return 2 ** s["wall_split"]
+    if s["wall_layers"] > 0:
+        return round(1.3 ** (s["wall_layers"] - 1) / 0.4)
+    return 1
 
 
 def _distance(a, b):
@@ -441,6 +490,100 @@ def write_remesh_dicts(case):
     print(f"ramair_fluid: remesh: background {n[0]}x{n[1]}x{n[2]} over the whole box")
 
 
+def split_stage(case, time, delta_t):
+    """What a new mesh made at TIME gets (Allrun's remesh loop): `split N` (wall_split's splits) and `layers
+    yes|no` (wall_layers: snappyHexMesh with system/snappyHexMeshDict.wall), the thin wall cells from the start or
+    from wall_after's time on; when this is wall_after's new mesh (the controlDict's DELTA_T still the plain
+    step), also that stage's `deltaT`, `writeInterval` and `equilibriumSteps`."""
+    rec = load_record(case)
+    s, d = rec["settings"], rec["derived"]
+    t, dt_now = float(time), float(delta_t)
+    if s["wall_after"] > 0 and t < s["wall_after"] * d["deltaT"] - 0.5 * d["deltaT"]:
+        return ["split 0", "layers no"]
+    out = [f"split {s['wall_split']}", f"layers {'yes' if s['wall_layers'] > 0 else 'no'}"]
+    f = wall_factor(s)
+    if s["wall_after"] > 0 and abs(dt_now - d["deltaT"]) <= 1e-6 * d["deltaT"]:
+        every = min(s["steps"], s["write_interval"] or s["steps"])
+        out += [f"deltaT {d['deltaT'] / f:.12g}", f"writeInterval {every * f}",
+                f"equilibriumSteps {max(1, round(s['equilibrium_steps'] / f))}"]
+    return out
+
+
+def write_split_set(sysd, src, bmin, bmax, keep, excluded):
+    """system/topoSetDict for wall_split: the cells refineWallLayer may split, all but those within `keep` of
+    the tips' side (the outer 8 % of the half-span) and those in the `excluded` spheres ([x, y, z, radius]:
+    where a split made wrong-oriented faces, split-exclude)."""
+    actions = [f"  {{ name wallSplit; type cellSet; action new; source boxToCell;\n"
+               f"    box ({bmin[0] - 1:.6g} {-keep:.6g} {bmin[2] - 1:.6g}) ({bmax[0] + 1:.6g} {keep:.6g} {bmax[2] + 1:.6g}); }}\n"]
+    actions += [f"  {{ name wallSplit; type cellSet; action subtract; source sphereToCell; origin {v3(p[:3])}; "
+                f"radius {p[3]:.6g}; }}\n" for p in excluded]
+    write(os.path.join(sysd, "topoSetDict"), "dictionary", "topoSetDict", src,
+          "// wall_split: the cells refineWallLayer may split (all but the outer 8 % of the half-span"
+          + (f" and {len(excluded)} spots where a split made wrong-oriented faces" if excluded else "") + ")\n"
+          "actions\n(\n" + "".join(actions) + ");\n")
+
+
+def split_exclude(case, log):
+    """After wall_split's refineWallLayer and checkMesh LOG: True when the split mesh passes (the skewness at
+    the trailing edge excepted). Otherwise the centres of checkMesh's wrongOrientedFaces (cells split on a
+    skin the snapped cells follow badly, e.g. around a deformed canopy) join constant/wallSplitExcluded.json
+    and system/topoSetDict leaves the cells within 3 wall cells of them unsplit (twice that around a spot
+    that stays wrong): False, split again."""
+    m = check_mesh(case, log)
+    if m["ok"] or m["only_skewness"]:
+        return True
+    other = [x for x in m["failed"] if "skew" not in x and "face pyramids" not in x]
+    if other:
+        raise InputError(f"{os.path.join(case, log)}: the split mesh fails " + "; ".join(x.lstrip("*") for x in other))
+    mesh = os.path.join(case, "constant", "polyMesh")
+    path = os.path.join(mesh, "sets", "wrongOrientedFaces")
+    try:
+        with open(path) as f:
+            t = f.read()
+    except OSError as e:
+        raise InputError(f"{path}: {e} (checkMesh names the wrong-oriented faces there)")
+    m = re.compile(r"^(\d+)\s*\(([^)]*)\)", re.M).search(t, t.index("}") if "FoamFile" in t else 0)
+    if not m:
+        raise InputError(f"{path}: not an ASCII OpenFOAM list of face labels")
+    ids = [int(x) for x in m.group(2).split()][:int(m.group(1))]
+    with open(os.path.join(mesh, "points")) as f:
+        t = f.read()
+    n, pos = _foam_list(t, t.index("}") if "FoamFile" in t else 0)
+    pts = [tuple(map(float, p.split())) for p in re.findall(r"\(([^()]+)\)", t[pos:])[:n]]
+    with open(os.path.join(mesh, "faces")) as f:
+        t = f.read()
+    n, pos = _foam_list(t, t.index("}") if "FoamFile" in t else 0)
+    faces = re.findall(r"\d+\(([^()]*)\)", t[pos:])
+    centres = []
+    for fi in ids:
+        v = [pts[int(i)] for i in faces[fi].split()]
+        centres.append([sum(p[k] for p in v) / len(v) for k in range(3)])
+    # a spot: [x, y, z, radius]; a wrong face inside a spot already kept unsplit doubles that spot's radius
+    # (the split cells around it still cut its edges), any other starts a spot of 3 wall cells
+    rec = load_record(case)
+    store = os.path.join(case, "constant", "wallSplitExcluded.json")
+    excluded = json.load(open(store)) if os.path.exists(store) else []
+    r0 = 3.0 * rec["derived"]["h_wing"]
+    grown = set()
+    for c in centres:
+        near = [i for i, e in enumerate(excluded) if math.dist(c, e[:3]) <= e[3]]
+        if near:
+            grown.update(near)
+        else:
+            excluded.append(c + [r0])
+    for i in grown:
+        excluded[i][3] *= 2
+    with open(store, "w") as f:
+        json.dump(excluded, f)
+    lo, hi, dom = rec["wing"]["min"], rec["wing"]["max"], rec["domain"]
+    write_split_set(os.path.join(case, "system"), os.path.basename(rec["settings_file"]), dom["min"], dom["max"],
+                    0.92 * max(abs(lo[1]), abs(hi[1])), excluded)
+    new = centres
+    print(f"ramair_fluid: wall_split: {len(new)} wrong-oriented faces after the split; {len(excluded)} spots left "
+          "unsplit, splitting again")
+    return False
+
+
 def write_case(settings_path, stl_path, case):
     s = read_settings(settings_path)
     tris = read_stl(stl_path)
@@ -491,13 +634,12 @@ def write_case(settings_path, stl_path, case):
     # wall_split: the set of cells refineWallLayer may split (Allrun): all but those near the tips, whose sharp
     # edge between the skin and the tip rib gives inverted face pyramids when split
     if s["wall_split"] > 0:
-        keep = 0.92 * max(abs(lo[1]), abs(hi[1]))
-        write(os.path.join(sysd, "topoSetDict"), "dictionary", "topoSetDict", src,
-              "// wall_split: the cells refineWallLayer may split (all but the outer 8 % of the half-span)\n"
-              f"actions ( {{ name wallSplit; type cellSet; action new; source boxToCell;\n"
-              f"  box ({bmin[0] - 1:.6g} {-keep:.6g} {bmin[2] - 1:.6g}) ({bmax[0] + 1:.6g} {keep:.6g} {bmax[2] + 1:.6g}); }} );\n")
+        write_split_set(sysd, src, bmin, bmax, 0.92 * max(abs(lo[1]), abs(hi[1])), [])
     # prism_layers: the first layer's centre at y+ ~ 50 with flat-plate friction at Re_x = 5e5 on the chord
     # (Cf = 0.027 Re_x^(-1/7), White): 0.0022 chord thick, growing by 1.2 until a layer reaches half the wall cell
+    plain_spec = ("relativeSizes true; layers { }; expansionRatio 1.2; finalLayerThickness 0.5; "
+                  "minThickness 0.1;")
+    layers_on, layer_spec = "false", plain_spec
     if s["prism_layers"] == "yes":
         first, growth = 0.0022 * c, 1.2
         nlay = 0
@@ -507,11 +649,14 @@ def write_case(settings_path, stl_path, case):
         layer_spec = (f"// {nlay} layers, the first {first:.4g} m thick, growing by {growth:g}\n"
                       f"  relativeSizes false; layers {{ wing {{ nSurfaceLayers {nlay}; }} }}; expansionRatio {growth:g};\n"
                       f"  firstLayerThickness {first:.6g}; minThickness {0.5 * first:.6g};")
-    else:
-        layers_on = "false"
-        layer_spec = ("relativeSizes true; layers { }; expansionRatio 1.2; finalLayerThickness 0.5; "
-                      "minThickness 0.1;")
-    write(os.path.join(sysd, "snappyHexMeshDict"), "dictionary", "snappyHexMeshDict", src, f"""\
+    wall_spec = (f"// wall_layers: {s['wall_layers']} layers sized on the wall cell, the outermost 0.4 of it\n"
+                 f"  relativeSizes true; layers {{ wing {{ nSurfaceLayers {s['wall_layers']}; }} }}; expansionRatio 1.3; "
+                 "finalLayerThickness 0.4; minThickness 0.05;")
+    if s["wall_layers"] > 0 and s["wall_after"] == 0:
+        layers_on, layer_spec = "true", wall_spec
+
+    def snappy_dict(layers_on, layer_spec):
+        return f"""\
 castellatedMesh true;
 snap true;
 addLayers {layers_on};   // prism_layers (docs/AERODYNAMICS.md): without them y+ is whatever the wall cell gives
@@ -561,7 +706,13 @@ meshQualityControls
   relaxed {{ maxNonOrtho 75; }}
 }}
 mergeTolerance 1e-6;
-""")
+"""
+    write(os.path.join(sysd, "snappyHexMeshDict"), "dictionary", "snappyHexMeshDict", src,
+          snappy_dict(layers_on, layer_spec))
+    if s["wall_layers"] > 0 and s["wall_after"] > 0:
+        # wall_after: the new mesh with the thin wall cells (Allrun: snappyHexMesh -dict)
+        write(os.path.join(sysd, "snappyHexMeshDict.wall"), "dictionary", "snappyHexMeshDict", src,
+              "// wall_after: the mesh from that step on, with wall_layers\n" + snappy_dict("true", wall_spec))
 
     rans = s["model"] == "kOmegaSST"
     write(os.path.join(cons, "transportProperties"), "dictionary", "transportProperties", src,
@@ -657,8 +808,12 @@ solvers
                 if s["structure_mode"] == "equilibrium" else
                 f"structureMode timeAccurate; subcycles {s['subcycles']};")
         remesh = (f"\n    remeshBelow {s['remesh_below']:.9g};   // then Allrun snaps a new mesh to the canopy"
-                  "\n    remeshSurface \"constant/triSurface/generated/wing.stl\";   // the design skin, moved"
                   if s["remesh_below"] > 0 else "")
+        if s["wall_after"] > 0:
+            remesh += (f"\n    remeshAt {s['wall_after'] * d['deltaT']:.12g};   // wall_after {s['wall_after']} "
+                       "steps: a new mesh with thin wall cells")
+        if remesh:
+            remesh += "\n    remeshSurface \"constant/triSurface/generated/wing.stl\";   // the design skin, moved"
         coupling = f"""\
   // The canopy of structure-coupled.yaml (structure.yaml with this case's ram pressure, line-drag wind and
   // coupling interface) on the wing patch; the fluid's pressure is gauge (freestreamPressure 0) like the ram
@@ -683,7 +838,7 @@ solvers
 """
     # A run that stops for new meshes restarts from a time directory's name: 12 digits keep the restarted
     # times on the steps' (8 drifted by 5e-9 s per restart until OpenFOAM lengthened the names itself).
-    precision = 12 if s["remesh_below"] > 0 else 8
+    precision = 12 if s["remesh_below"] > 0 or s["wall_after"] > 0 else 8
 
     # half_domain: the half wing's forces over half the reference area are the whole wing's coefficients
     aref = d["Aref"] / 2 if half else d["Aref"]
@@ -1010,6 +1165,17 @@ def check_mesh(case, log="log.checkMesh"):
     # the only failure accepted: high skewness (the faces at the sharp trailing edge)
     out["only_skewness"] = out["failed_checks"] == 1 and all("skew" in l for l in out["failed"])
     return out
+
+
+def mesh_gate(case, log):
+    """A new mesh made during a run (remeshing) must pass checkMesh, the sharp trailing edge's skewness
+    excepted, before the run goes on: a mesh with wrong-oriented faces stops the moving-mesh run in its first
+    window. The message for the console, or None."""
+    m = check_mesh(case, log)
+    if m["ok"] or m["only_skewness"]:
+        return None
+    return (f"{os.path.join(case, log)}: the new mesh fails {m['failed_checks']} checkMesh check(s): "
+            + "; ".join(x.lstrip("*") for x in m["failed"]))
 
 
 def read_force_coeffs(case):
@@ -1394,7 +1560,8 @@ def settings_table():
 def main(argv):
     cmds = {"generate-args": 1, "check": 1, "write": 3, "structure": 3, "fields": 1, "summary": 1,
             "settings-table": 0, "courant-check": 2,
-            "patch-area": 2, "mirror-check": 1, "mirror-finish": 1, "remesh-dicts": 1}
+            "patch-area": 2, "mirror-check": 1, "mirror-finish": 1, "remesh-dicts": 1, "split-stage": 3, "mesh-gate": 2,
+            "split-exclude": 2}
     if len(argv) < 2 or argv[1] not in cmds or len(argv) != 2 + cmds[argv[1]]:
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         return 2
@@ -1435,6 +1602,15 @@ def main(argv):
             mirror_finish(*args)
         elif cmd == "remesh-dicts":
             write_remesh_dicts(*args)
+        elif cmd == "split-exclude":
+            return 0 if split_exclude(*args) else 3
+        elif cmd == "mesh-gate":
+            msg = mesh_gate(*args)
+            if msg:
+                print(f"ramair_fluid: {msg}", file=sys.stderr)
+                return 1
+        elif cmd == "split-stage":
+            print("\n".join(split_stage(*args)))
         else:
             area, n = patch_area(*args)
             print(f"{area:.9g} {n}")

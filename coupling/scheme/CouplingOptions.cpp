@@ -523,9 +523,16 @@ OptionSchema couplingOptionSchema() {
       "ends the run cleanly for a new mesh: the fields and the structure's state are written, the fluid's "
       "skin "
       "as it is now goes to structure/remesh/PATCH.stl; 0: off"));
+  // A new mesh at a chosen time, whatever the cells: a run that starts on a mesh the moving canopy can drag
+  // (coarse, thick wall cells) and goes on from its trimmed shape on one it could not (thin wall cells).
+  coupled.push_back(realOption(
+      "remeshAt", "0", Bound{0, true}, std::nullopt,
+      "the run ends cleanly for a new mesh at the first window ending at or after this time [s] (as "
+      "remeshBelow does; a run restarted at or after it does not stop again); 0: off"));
   coupled.push_back(wordSpec(
       "remeshSurface", OptionType::Text, "", {},
-      "remeshBelow: the undeformed skin (ASCII STL, one interface patch) that is moved with the canopy and "
+      "remeshBelow, remeshAt: the undeformed skin (ASCII STL, one interface patch) that is moved with the "
+      "canopy and "
       "written for the new mesh; without it the patch's own faces are (each new mesh then snaps to the last "
       "one's faceted skin and loses a little of the curvature every time)"));
   coupled.push_back(wordSpec(

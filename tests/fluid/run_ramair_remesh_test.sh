@@ -19,6 +19,11 @@
 #   capped       `capped` is remesh with remesh_max 1: Allrun stops when the run asks for a second new mesh,
 #                exit non-zero, a message naming remesh_max and the time, the case kept as the run left it
 #                (the request, the fields at that time on both ranks, stage1/ and no stage2/).
+#   wall         `wall` is plain with wall_layers 3 and wall_after 3 (the adapter's remeshAt): 3 windows on the
+#                plain mesh, one new mesh at t = 3 dt with prism layers on the wing (snappyHexMeshDict.wall; more
+#                cells than the first mesh, checkMesh passing), then the last 3 steps' flow time in 12 windows of
+#                dt/4 with a quarter of the equilibrium pseudo-steps, to plain's end time, force fluid = structure
+#                in every window.
 # Exit 77 (ctest: skipped) without Debian's OpenFOAM binaries.
 # Usage: run_ramair_remesh_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -uo pipefail
@@ -28,7 +33,8 @@ src=$1 build=$2 work=$3
 sed -e 's/^steps .*/steps 6/' -e 's/^rigid_steps .*/rigid_steps 20/' -e 's/^carry_after .*/carry_after 20/' \
   -e 's/^write_interval .*/write_interval 1/' coupled.settings > short.settings
 cd .. || exit 1
-cp -r ramair-kt plain && cp -r ramair-kt remesh && cp -r ramair-kt capped || fail "copying the case"
+cp -r ramair-kt plain && cp -r ramair-kt remesh && cp -r ramair-kt capped && cp -r ramair-kt wall || fail "copying the case"
+printf 'wall_layers 3\nwall_after 3\n' >> wall/short.settings
 echo "remesh_below 0.95" >> remesh/short.settings
 printf 'remesh_below 0.95\nremesh_max 1\n' >> capped/short.settings
 (cd plain && ./Allrun.parallel -settings short.settings > ../plain.log 2>&1) || { tail -20 plain.log; fail "plain: Allrun failed"; }
@@ -43,6 +49,12 @@ grep -q "asks for another at t = $Tc s" capped.log || fail "capped: the message 
 for r in 0 1; do [ -f "capped/processor$r/$Tc/U" ] || fail "capped: no fields at $Tc on rank $r"; done
 [ -d capped/stage1 ] && [ ! -d capped/stage2 ] || fail "capped: expected stage1/ and no stage2/"
 echo "capped: stopped at t = $Tc as asked"
+
+(cd wall && ./Allrun.parallel -settings short.settings > ../wall.log 2>&1) || { tail -20 wall.log; fail "wall: Allrun failed"; }
+grep -E "New mesh|Thin wall cells" wall.log
+grep -q "Layers added" wall/log.snappyHexMesh.remesh1 && ! grep -q "Layers added" wall/log.snappyHexMesh ||
+  fail "wall: the first mesh should have no layers and the new one should (log.snappyHexMesh, .remesh1)"
+[ -d wall/stage1 ] && [ ! -d wall/stage2 ] || fail "wall: expected one new mesh (stage1/, no stage2/)"
 
 # same-mesh: remesh's first stop, continued on the old mesh as moved (stage1/T/polyMesh/points as the new
 # undeformed points), its fields copied (U p k omega nut and the fluxes phi, Uf), the displacement zero.
@@ -100,6 +112,34 @@ for r in same:
     check(dl < 0.005, f"same-mesh: lift {100 * dl:.2f} % off plain's at t = {r['time']}")
     check(dd < 0.05, f"same-mesh: drag {100 * dd:.2f} % off plain's at t = {r['time']}")
 check(n >= 3, f"same-mesh: {n} windows to compare, fewer than 3")
+wall = rows("wall")
+dt = float(plain[1]["time"]) - float(plain[0]["time"])
+times = [float(r["time"]) for r in wall]
+check(len(wall) == 15, f"wall: {len(wall)} windows, not 3 + 12")
+if len(wall) == 15:
+    check(all(abs(times[i] - float(plain[i]["time"])) < 1e-6 for i in range(3)), "wall: the first 3 windows are not plain's")
+    steps = [b - a for a, b in zip(times[3:], times[4:])]
+    check(all(abs(x - dt / 4) < 1e-6 * dt for x in steps), f"wall: the windows after the new mesh are not dt/4: {steps}")
+    check(abs(times[-1] - float(plain[-1]["time"])) < 1e-6, f"wall: ends at {times[-1]}, plain at {plain[-1]['time']}")
+for r in wall:
+    f = [float(r[k]) for k in ("Fx_fluid", "Fy_fluid", "Fz_fluid")]
+    g = [float(r[k]) for k in ("Fx_structure", "Fy_structure", "Fz_structure")]
+    check(max(abs(x - y) for x, y in zip(f, g)) < 1e-6 * max(abs(x) for x in f), f"wall: force fluid != structure at {r['time']}")
+with open(os.path.join("wall", "structure", "remesh.1", "request")) as f:
+    req = f.read()
+check("reason remeshAt" in req, f"wall: the new mesh was not asked for by remeshAt: {req!r}")
+sj = json.load(open(os.path.join("wall", "summary.json")))
+cells0 = json.load(open(os.path.join("plain", "summary.json")))["mesh"]["cells"]
+sr = sj.get("remeshes", [])
+check(len(sr) == 1, f"wall: {len(sr)} new meshes in summary.json, not 1")
+cells1 = sr[0]["mesh"]["cells"] if sr else 0
+check(cells1 > 1.1 * cells0, f"wall: {cells1} cells on the new mesh, plain {cells0}: no layers")
+check(bool(sr) and (sr[0]["mesh"]["ok"] or sr[0]["mesh"]["only_skewness"]), "wall: checkMesh fails on the new mesh")
+with open(os.path.join("wall", "system", "controlDict")) as f:
+    cd = f.read()
+check("equilibriumSteps 50;" in cd, "wall: controlDict's equilibriumSteps is not 200 / 4")
+print(f"wall: {len(wall)} windows, {cells1} cells on the new mesh (plain {cells0}); lift at the end "
+      f"{float(wall[-1]['Fz_fluid']):.2f} N (plain {float(plain[-1]['Fz_fluid']):.2f})")
 s = json.load(open(os.path.join("remesh", "summary.json")))
 rm = s.get("remeshes", [])
 check(len(rm) >= 2, f"remesh: {len(rm)} new meshes, not at least 2")

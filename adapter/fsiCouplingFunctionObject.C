@@ -747,11 +747,15 @@ void fsiCoupling::printProgress(const vector& fluidTotal, bool finished) const {
   if (progressEvery_ <= 0) return;
   const scalar dt = time_.deltaTValue();
   const long n = std::lround(time_.value() / dt), total = std::lround(endTime_ / dt);
-  if (n % progressEvery_ != 0 && !finished) return;
-  const auto& w = scheme_->lastWindow();
-  const auto& s = scheme_->statistics();
   const double wall = seconds(wallStart_, Clock::now());
   const long done = std::lround((time_.value() - segmentStart_) / dt);
+  // Every progressEvery windows and the last; also the segment's first window (an ETA at once) and any window
+  // kProgressSeconds of wall time after the last line (slow windows still show that the run is alive)
+  if (n % progressEvery_ != 0 && !finished && done != 1 && wall - lastProgressWall_ < kProgressSeconds)
+    return;
+  lastProgressWall_ = wall;
+  const auto& w = scheme_->lastWindow();
+  const auto& s = scheme_->statistics();
   const double eta = done > 0 ? wall * double(total - n) / double(done) : 0.0;
   char residual[32] = "-";
   if (implicit_) std::snprintf(residual, sizeof residual, "%.2e", w.relativeResidual);

@@ -315,16 +315,25 @@ def plot_structure(index, h5, path, title, color):
             factor, unit_label = 1e3, "mm"
         cmap = plt.get_cmap("viridis")
         v = values * factor
-        lo, hi = (float(np.nanmin(v)), float(np.nanmax(v))) if v.size else (0.0, 1.0)
+        # The colour range covers the 2nd to 98th percentile of the triangles: a few elements at a line
+        # attachment or a rib (a point load's singular stress) would otherwise set the scale and leave the rest
+        # of the skin one colour; the colour bar's arrows and its label give what lies beyond.
+        lo, hi = (float(np.nanpercentile(v, 2)), float(np.nanpercentile(v, 98))) if v.size else (0.0, 1.0)
+        vmin, vmax = (float(np.nanmin(v)), float(np.nanmax(v))) if v.size else (lo, hi)
         if not hi > lo:
-            hi = lo + 1.0
+            lo, hi = vmin, vmax if vmax > vmin else vmin + 1.0
+        clipped = vmin < lo or vmax > hi
+        extend = {(True, True): "both", (True, False): "min", (False, True): "max"}.get((vmin < lo, vmax > hi),
+                                                                                        "neither")
         norm = matplotlib.colors.Normalize(lo, hi)
         surf = Poly3DCollection(x[tris], facecolors=cmap(norm(v)),
                                 edgecolor=(0, 0, 0, 0.25) if len(tris) <= 4000 else "none", linewidth=0.3)
         ax.add_collection3d(surf)
         sm = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
-        fig.colorbar(sm, ax=ax, location="bottom", shrink=0.6, pad=0.02, aspect=40,
-                     label=f"{label} [{unit_label}]")
+        # colour bars on the right: below the axes they hid the x axis' label
+        fig.colorbar(sm, ax=ax, location="right", shrink=0.6, pad=0.02, aspect=30, extend=extend,
+                     label=f"{label} [{unit_label}]" + (f"\n(2nd-98th percentile; {vmin:.3g} to {vmax:.3g} in all)"
+                                                         if clipped else ""))
     if len(lines):
         if "cable_force" in g:
             f = np.asarray(g["cable_force"][()], float).ravel()
@@ -334,7 +343,7 @@ def plot_structure(index, h5, path, title, color):
             cables = Line3DCollection(x[lines], cmap="inferno", norm=cnorm, linewidth=1.8)
             cables.set_array(f * cfac)
             ax.add_collection3d(cables)
-            fig.colorbar(cables, ax=ax, location="bottom", shrink=0.5, pad=0.02, aspect=40,
+            fig.colorbar(cables, ax=ax, location="right", shrink=0.5, pad=0.02, aspect=30,
                          label=f"cable force [{cunit}]")
         else:
             ax.add_collection3d(Line3DCollection(x[lines], colors="black", linewidth=1.5))
@@ -347,7 +356,7 @@ def plot_structure(index, h5, path, title, color):
     mid = 0.5 * (lo + hi)
     for set_lim, c, s in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid, span):
         set_lim(c - 0.5 * s, c + 0.5 * s)
-    ax.set_box_aspect(tuple(span))
+    ax.set_box_aspect(tuple(span), zoom=0.85)  # room for the tick and axis labels inside the figure
     # A thin direction (a 2-D case's depth, a flat sheet's normal) would smear its tick labels into the
     # neighbour axis: its extent goes into the axis label instead, and the view looks more along a thin x or y.
     thin = span < 0.15 * span.max()

@@ -147,7 +147,12 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   const YAML::Node checks = top.raw("checks");
   top.finish({"reference", "checks"});
   if (!checks || !checks.IsSequence() || checks.size() == 0) top.fail("'checks' must be a non-empty list");
-  if (out.empty()) out = fs::path("results") / caseDir.filename();
+  // Not results/<case>: that is where README's `fsi run ... --out results/<case>` writes a case's own run.
+  if (out.empty()) {
+    fs::path name = fs::absolute(caseDir).lexically_normal();
+    if (name.filename().empty()) name = name.parent_path();
+    out = fs::path("results") / "validate" / name.filename();
+  }
   std::size_t failures = 0;
   fmt::print("validate {}  (reference: {})\n", caseDir.string(), source);
   fmt::print("  {:<34} {:>14} {:>14} {:>9} {:>8}  {}\n", "check", "computed", "expected", "error", "tol", "");
@@ -210,13 +215,19 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
       const double relTol = e.number("rel_tol");
       e.finish({"value", "equal_to", "baseline", "rel_tol"});
       if (!(relTol >= 0)) e.failAt("rel_tol", "must be >= 0");
-      // Relative error; for an expected 0 the tolerance is absolute.
-      const double err = std::abs(it->second - value) / (value != 0.0 ? std::abs(value) : 1.0);
+      // Relative error; for an expected 0 the tolerance is absolute (and shown as such, not as a percentage).
+      const bool absolute = value == 0.0;
+      const double err = std::abs(it->second - value) / (absolute ? 1.0 : std::abs(value));
       const bool ok = r.exitCode() == 0 && err <= relTol;
       failures += ok ? 0 : 1;
       ++total;
-      fmt::print("  {:<34} {:>14.7g} {:>14.7g} {:>8.3f}% {:>7.2f}%  {}{}\n", label + ": " + probe + against,
-                 it->second, value, 100 * err, 100 * relTol, ok ? "ok" : "FAIL",
+      const std::string errText =
+          absolute ? fmt::format("{:>9.3g}", err) : fmt::format("{:>8.3f}%", 100 * err);
+      const std::string tolText =
+          absolute ? fmt::format("{:>8.3g}", relTol) : fmt::format("{:>7.2f}%", 100 * relTol);
+      fmt::print("  {:<34} {:>14.7g} {:>14.7g} {} {}  {}{}{}\n", label + ": " + probe + against, it->second,
+                 value, errText, tolText, ok ? "ok" : "FAIL",
+                 absolute ? " (absolute: the expected value is 0)" : "",
                  r.exitCode() ? " (" + toString(r.reason) + ")" : "");
     }
     earlier[label] = r.probes;
@@ -361,7 +372,7 @@ int main(int argc, char** argv) {
   auto* validate = app.add_subcommand("validate", "run a case's reference checks (CASE/reference.yaml)");
   fs::path caseDir, valOut;
   validate->add_option("case", caseDir, "case directory")->required();
-  validate->add_option("--out,-o", valOut, "output directory (default results/<case>)");
+  validate->add_option("--out,-o", valOut, "output directory (default results/validate/<case>)");
   validate->add_flag("--quiet,-q", quiet, "no progress output");
 
   auto* mapCheck = app.add_subcommand(

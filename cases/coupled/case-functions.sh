@@ -148,6 +148,60 @@ fsiArgs() {
   esac
 }
 
+# fsiCheckCase: what a coupled case needs before anything runs (the template's Allrun, README.md "Coupling your own
+# OpenFOAM case"), each missing piece named with the file and what to add; exit 2. Sets fsi_function (the
+# fsiCoupling function object's name), fsi_patches and fsi_scene.
+fsiCheckCase() {
+  local f name fields=0
+  [ -f system/controlDict ] || { echo "Allrun: $PWD is not an OpenFOAM case: no system/controlDict" >&2; exit 2; }
+  fsi_function=
+  for name in $(foamDictionary -disableFunctionEntries -entry functions -keywords system/controlDict 2> /dev/null); do
+    if [ "$(foamDictionary -disableFunctionEntries -entry "functions/$name/type" -value system/controlDict 2> /dev/null)" = fsiCoupling ]; then
+      fsi_function=$name
+      break
+    fi
+  done
+  [ -n "$fsi_function" ] || {
+    echo "Allrun: system/controlDict has no function object of type fsiCoupling: add one to its functions, e.g." \
+      "fsi { type fsiCoupling; libs (\"libfsiFoam.so\"); patches (PATCH); scene \"structure.yaml\"; rho 1000; }" \
+      "(options: docs/COUPLING.md)" >&2
+    exit 2
+  }
+  fsi_patches=$(foamDictionary -disableFunctionEntries -entry "functions/$fsi_function/patches" -value system/controlDict 2> /dev/null | tr -d '()')
+  fsi_scene=$(foamDictionary -disableFunctionEntries -entry "functions/$fsi_function/scene" -value system/controlDict 2> /dev/null | tr -d '"')
+  [ -n "$fsi_patches" ] || { echo "Allrun: system/controlDict: functions/$fsi_function has no patches (the flexible patches, e.g. patches (flap);)" >&2; exit 2; }
+  [ -n "$fsi_scene" ] || { echo "Allrun: system/controlDict: functions/$fsi_function has no scene (the structure, e.g. scene \"structure.yaml\";)" >&2; exit 2; }
+  [ -f "$fsi_scene" ] || { echo "Allrun: system/controlDict: functions/$fsi_function names the scene $fsi_scene, which is not in $PWD" >&2; exit 2; }
+  foamDictionary -disableFunctionEntries -entry libs -value system/controlDict 2> /dev/null | grep -q libfsiFoam ||
+    { echo "Allrun: system/controlDict: add libs (\"libfsiFoam.so\"); at its top level (the interface's pointDisplacement condition lives there)" >&2; exit 2; }
+  [ -f constant/dynamicMeshDict ] || { echo "Allrun: no constant/dynamicMeshDict: the coupled patches move the mesh (e.g. dynamicFvMesh dynamicMotionSolverFvMesh; motionSolver displacementLaplacian; displacementLaplacianCoeffs { diffusivity quadratic inverseDistance (PATCH); })" >&2; exit 2; }
+  for f in 0/pointDisplacement 0.orig/pointDisplacement; do
+    [ -f "$f" ] || continue
+    fields=1
+    grep -q fsiInterfaceDisplacement "$f" ||
+      { echo "Allrun: $f: the coupled patches ($fsi_patches) need { type fsiInterfaceDisplacement; value uniform (0 0 0); }" >&2; exit 2; }
+  done
+  [ "$fields" = 1 ] || fsiGreater "$(fsiLatestTime)" 0 || { echo "Allrun: no 0/pointDisplacement (or 0.orig/pointDisplacement): the mesh motion's field, type fsiInterfaceDisplacement on $fsi_patches" >&2; exit 2; }
+  return 0
+}
+
+# fsiPrepareMesh: blockMesh when there is no mesh and system/blockMeshDict says how to make one (Allclean removes
+# only a mesh made here); otherwise the case's own mesh (snappyHexMesh, gmshToFoam, ... made by you)
+fsiPrepareMesh() {
+  [ -d constant/polyMesh ] && return 0
+  [ -f system/blockMeshDict ] || { echo "Allrun: no mesh (constant/polyMesh) and no system/blockMeshDict to make one: mesh the case first" >&2; exit 2; }
+  runApplication blockMesh
+  touch constant/polyMesh/.madeByAllrun
+}
+
+# fsiPrepareFields: 0/ from 0.orig/ when the case keeps its initial fields there (Allclean removes only a 0/
+# made here)
+fsiPrepareFields() {
+  [ -d 0.orig ] && [ ! -d 0 ] || return 0
+  cp -r 0.orig 0
+  touch 0/.madeByAllrun
+}
+
 # fsiFresh: true unless this is a continued run (the mesh and initial fields are prepared only then)
 fsiFresh() { [ "$fsi_continue" = 0 ]; }
 
@@ -204,7 +258,10 @@ runSolver() {
     cmd+=(pimpleFoam -parallel)
   fi
   echo "Running ${cmd[*]} (log: $log)"
-  "${cmd[@]}" < /dev/null 2>&1 | tee "$log" | grep --line-buffered -E '^(\[fsi\] |fsiCoupling: )' | fsiProgress
+  # the console: the [fsi] lines (set-up, progress, totals) and what needs a look (a window that did not
+  # converge, warnings, errors); the per-window `fsiCoupling: t = ...` lines stay in the log
+  "${cmd[@]}" < /dev/null 2>&1 | tee "$log" |
+    grep --line-buffered -E '^\[fsi\] |NOT CONVERGED|[Ww]arning|FATAL|[Ee]rror' | fsiProgress
   local rc=${PIPESTATUS[0]}
   if [ "$rc" != 0 ]; then
     echo "pimpleFoam failed (exit $rc); the end of $log:" >&2
@@ -222,7 +279,8 @@ fsiFinish() {
   wall=$(awk -v a="$fsi_start_wall" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
   local continued=()
   [ "$fsi_continue" = 1 ] && continued=(--continued)
-  "$python" "$fsi_here/summarize.py" . "$wall" "${continued[@]}" || status=1
+  local summary="summary.json (the numbers above)"
+  "$python" "$fsi_here/summarize.py" . "$wall" "${continued[@]}" || { status=1; summary="no summary: summarize.py failed (above)"; }
   touch "$fsi_case.foam"
   if [ -x "$fsi_root/bin/fsi" ]; then fsi_cmd=$fsi_root/bin/fsi; else fsi_cmd=$(command -v fsi); fi
   local plots="no plots (this fsi command has no 'plot')"
@@ -237,6 +295,6 @@ fsiFinish() {
     fi
   fi
   echo "Results in $PWD:"
-  echo "  summary.json (the numbers above), $fsi_case.foam (ParaView: the fluid), structure/*.xdmf (the structure), $plots"
+  echo "  $summary, $fsi_case.foam (ParaView: the fluid), structure/*.xdmf (the structure), $plots"
   return $status
 }

@@ -94,4 +94,10 @@ struct Constraints {
   void reactions(const Nodes& nodes, std::vector<double>& r) const;
 };
 
+/// Whether any node is held (fixed, prescribed or sliding on a plane): without, the structure has rigid-body
+/// modes (ties alone couple nodes to each other, not to the ground).
+inline bool hasSupport(const Constraints& c) {
+  return !c.fixedDofs.empty() || !c.prescribed.empty() || !c.sliders.empty();
+}
+
 }  // namespace fsi::structure

@@ -28,10 +28,17 @@ std::string mostStrainedElement(const Scene& scene) {
     if (!worstKind || s->strain > worst.strain) worstKind = kind, worst = *s;
   }
   if (!worstKind) return {};
-  return std::isfinite(worst.strain) ? fmt::format("Most strained element: {} (major strain {:.3g}). ",
-                                                   worstKind->describe(m, worst.element), worst.strain)
-                                     : fmt::format("First element with a non-finite strain: {}. ",
-                                                   worstKind->describe(m, worst.element));
+  if (!std::isfinite(worst.strain))
+    return fmt::format("First element with a non-finite strain: {}. ", worstKind->describe(m, worst.element));
+  // A fabric or a line fails long before 100 % strain: such a strain says the numbers are wrong, not the
+  // solver
+  constexpr double kAbsurdStrain = 1.0;
+  return fmt::format("Most strained element: {} (major strain {:.3g}{}). ",
+                     worstKind->describe(m, worst.element), worst.strain,
+                     worst.strain > kAbsurdStrain
+                         ? ": above 100 %, which no fabric or line survives; check the units (young in Pa, "
+                           "thickness and lengths in m) and the size of the load"
+                         : "");
 }
 
 // A node whose fictitious mass is far above the median moves that much slower in pseudo time: name it and
@@ -146,6 +153,10 @@ std::string diagnoseRelaxation(const Scene& scene, const DynamicRelaxation& dr, 
                      std::sqrt(R), i < int(dr.masses().size()) ? dr.masses()[i] : 0.0);
   }
   s += mostStrainedElement(scene);
+  if (!hasSupport(scene.constraints))
+    s += "No node is held (no fix, prescribe or slide constraint): the structure has rigid-body modes, and a "
+         "load that does not balance itself moves it instead of deforming it, so the residual cannot vanish; "
+         "hold at least three nodes that are not on one line. ";
   if (r.reason == StopReason::NotConverged) s += heaviestNode(m, dr.masses());
   // Residual history: start, lowest, and the last few iterations.
   const auto& h = r.history;

@@ -2,6 +2,10 @@
 // explicit run around its loop (RunCommon): output series, stop handling, summary.json.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
+#include "structure/model/Error.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
 #include "structure/run/RunCommon.hpp"
 #include "structure/run/Simulation.hpp"
@@ -25,6 +29,30 @@ StateSnapshot relaxationState(const Nodes& N, long iteration, double loadFactor,
   return s;
 }
 
+// Nothing to relax: no load at load_time, no strain at the start, nothing prescribed. A load whose time
+// function starts at 0 (smooth_step, ramp: the explicit examples') is zero at the default load_time 0, and
+// the relaxation would iterate to max_iterations on a residual of 0/0. A located input error instead.
+void requireSomethingToRelax(Scene& scene) {
+  if (!scene.constraints.prescribed.empty()) return;
+  Nodes& N = scene.model->nodes;
+  const double loadTime = scene.solver.relaxation.loadTime;
+  evaluateEffects(N, scene.effectList(), loadTime, 1.0, false);
+  double fext = 0, fint = 0;
+  for (std::size_t d = 0; d < N.fext.size(); ++d) {
+    fext = std::max(fext, std::abs(N.fext[d]));
+    fint = std::max(fint, std::abs(N.fint[d]));
+  }
+  std::fill(N.fext.begin(), N.fext.end(), 0.0);
+  std::fill(N.fint.begin(), N.fint.end(), 0.0);
+  if (fext == 0 && fint == 0)
+    throw InputError(fmt::format(
+        "{}: solver.load_time {:g}: nothing to relax: every load is zero at that time, the structure starts "
+        "unstrained and no motion is prescribed (a load's time function that starts at 0, like smooth_step "
+        "or ramp, is 0 at load_time 0: set solver.load_time to a time where the load is on, e.g. its "
+        "duration, or drop the function in a relaxation scene)",
+        scene.file.string(), loadTime));
+}
+
 }  // namespace
 
 RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
@@ -42,6 +70,11 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
         rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
     std::fflush(stdout);
   }
+  requireSomethingToRelax(scene);
+  if (!opt.quiet && !hasSupport(scene.constraints))
+    fmt::print(
+        "warning: no node is held (no fix, prescribe or slide constraint): the structure has rigid-body "
+        "modes, and a load that does not balance itself moves it instead of deforming it\n");
   RunOutput output(scene, opt);
   DynamicRelaxation dr(model, scene.effectList(), scene.constraints, rs);
   RunClock clock(opt.progressSeconds);

@@ -127,6 +127,14 @@ printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.y
   "    expect: {centre: {value: 0, rel_tol: 1}}" "  - label: second" "    scene: scene.yaml" \
   "    expect: {centre: {baseline: first, rel_tol: 0}}" > case6/reference.yaml
 expect 0 "second: centre vs first" -- "$fsi" validate case6 --out v6 --quiet
+# an expected 0 compares absolutely, and the table says so instead of printing a percentage
+expect 0 "(absolute: the expected value is 0)" -- "$fsi" validate case6 --out v6 --quiet
+# without --out: results/validate/<case>, not results/<case> (where `fsi run --out results/<case>` writes)
+expect 0 "centre = centre" -- "$fsi" validate case3/ --quiet
+if [[ ! -d results/validate/case3/check0 || -e results/case3 ]]; then
+  echo "FAIL: fsi validate case3/ without --out wrote elsewhere than results/validate/case3"
+  failures=$((failures + 1))
+fi
 printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.yaml" \
   "    expect: {centre: {baseline: second, rel_tol: 0}}" "  - label: second" "    scene: scene.yaml" \
   "    expect: {centre: {value: 0, rel_tol: 1}}" > case7/reference.yaml
@@ -137,6 +145,25 @@ printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.y
   "    set: 'effects.pressure={triangles: sheet, value: 2.0e4}'" "    expect: {centre: {baseline: first, rel_tol: 1.0e-3}}" \
   > case8/reference.yaml
 expect 1 "FAIL" -- "$fsi" validate case8 --out v8 --quiet
+
+# Dynamic-relaxation traps (issue 34): a load whose time function is 0 at load_time, a structure nobody holds,
+# absurd strains -- each said in the message, not left to 200,000 silent iterations.
+dr() {  # dr FILE CONSTRAINTS YOUNG EFFECTS: the drum relaxed
+  printf '%s\n' "title: drum relaxed" "materials:" \
+    "  film: {type: membrane, young: $3, poisson: 0.3, thickness: 1.0e-3, density: 1000}" \
+    "meshes:" "  sheet:" "    generator: {type: rectangle, size: [1, 1], divisions: [8, 8], pattern: cross}" \
+    "    material: film" "constraints: $2" "effects:" "  $4" \
+    "solver: {type: dynamic_relaxation, max_iterations: 300}" > "$1"
+}
+dr dr-zero.yaml "[{nodes: sheet/boundary, fix: all}]" 1.0e8 \
+  "pressure: {triangles: sheet, value: 100.0, function: {type: smooth_step, duration: 0.05}}"
+expect 2 "dr-zero.yaml: solver.load_time 0: nothing to relax: every load is zero at that time" -- \
+  "$fsi" run dr-zero.yaml --out dr-zero --quiet
+dr dr-free.yaml "[]" 1.0e8 "gravity: {acceleration: [0, 0, -9.81]}"
+expect 4 "No node is held (no fix, prescribe or slide constraint)" -- "$fsi" run dr-free.yaml --out dr-free --quiet
+dr dr-soft.yaml "[{nodes: sheet/boundary, fix: all}]" 1.0e3 "pressure: {triangles: sheet, value: 1000.0}"
+expect 3 "above 100 %, which no fabric or line survives; check the units" -- \
+  "$fsi" run dr-soft.yaml --out dr-soft --quiet
 
 # A good run: exit 0 and a readable summary.
 expect 0 "probe  centre" -- "$fsi" run good.yaml --out good-out

@@ -13,6 +13,8 @@ import subprocess
 import sys
 
 src, work = sys.argv[1], sys.argv[2]
+import shutil
+shutil.rmtree(work, ignore_errors=True)  # split-exclude keeps its spots in the work folder: start without any
 os.makedirs(os.path.join(work, "constant"), exist_ok=True)
 gen = os.path.join(src, "cases/coupled/ramair_fluid.py")
 bad = []

@@ -119,6 +119,41 @@ def main():
         good = got == expect
         print(f"run to {end} s, settled value {value}: checks pass {got} (expected {expect}): {'ok' if good else 'WRONG'}")
         ok &= good
+    # a quantity only reported (check: false) outside its range is listed apart and does not make a verdict
+    # false beside a passing one
+    d = case(work, "reported", [("coupling.csv", HEADER + "".join(row(0.1 * k, 2, 2.0) for k in range(1, 11)))])
+    with open(os.path.join(d, "structure", "timing.json"), "w") as f:
+        json.dump({}, f)
+    with open(os.path.join(d, "reference.yaml"), "w") as f:
+        f.write("probe: mid_z\nquantities:\n  settled: {measure: final, tolerance: 0.1, check: true, "
+                "published: [{source: test, value: 2.0}]}\n  later: {measure: final, tolerance: 0.1, "
+                "published: [{source: a longer run, value: 5.0}]}\n")
+    with open(os.devnull, "w") as null:
+        saved, sys.stdout = sys.stdout, null
+        sys.argv[1:] = [d, "1"]
+        summarize.main()
+        sys.stdout = saved
+    got = json.load(open(os.path.join(d, "summary.json")))
+    good = (got["all_checks_within_tolerance"] is True and got["reported_outside_range"] == ["later"]
+            and "all_within_tolerance" not in got)
+    print(f"a reported quantity outside its range: checks {got['all_checks_within_tolerance']}, listed "
+          f"{got['reported_outside_range']}: {'ok' if good else 'WRONG'}")
+    ok &= good
+    # a case of one's own has no reference.yaml: the summary still works, with every probe's final value
+    d = case(work, "own", [("coupling.csv", HEADER + "".join(row(0.1 * k, 2, 0.1 * k) for k in range(1, 11)))])
+    with open(os.path.join(d, "structure", "timing.json"), "w") as f:
+        json.dump({}, f)
+    with open(os.devnull, "w") as null:
+        saved, sys.stdout = sys.stdout, null
+        sys.argv[1:] = [d, "1"]
+        rc = summarize.main()
+        sys.stdout = saved
+    got = json.load(open(os.path.join(d, "summary.json")))
+    p = got.get("probes", {}).get("mid_z", {})
+    good = (rc == 0 and got["reference"] is None and abs(p.get("final", 0) - 1.0) < 1e-12
+            and abs(p.get("min", 0) - 0.1) < 1e-12 and got["iterations"]["windows"] == 10)
+    print(f"no reference.yaml: exit {rc}, probes {got.get('probes')}: {'ok' if good else 'WRONG'}")
+    ok &= good
     print("PASS" if ok else "FAIL")
     return 0 if ok else 1
 

@@ -199,21 +199,31 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
           e.failAt("equal_to", fmt::format("the scene defines no probe '{}'", e.string("equal_to")));
         value = ot->second;
       } else {
+        // `of: PROBE` compares with another probe of the earlier check and `factor: F` scales it: a mirror
+        // image (the left brake against the right: left tension vs right tension, yaw and roll with factor -1)
         const std::string base = e.string("baseline");
-        against = " vs " + base;
+        const std::string of = e.has("of") ? e.string("of") : probe;
+        against = " vs " + base + (of != probe ? " " + of : "");
         const auto bt = earlier.find(base);
         if (bt == earlier.end())
           e.failAt("baseline",
                    fmt::format("no earlier check is labelled '{}' (a baseline runs before the check "
                                "that compares with it)",
                                base));
-        const auto pt = bt->second.find(probe);
+        const auto pt = bt->second.find(of);
         if (pt == bt->second.end())
-          e.failAt("baseline", fmt::format("the check '{}' has no probe '{}'", base, probe));
+          e.failAt(e.has("of") ? "of" : "baseline", fmt::format("the check '{}' has no probe '{}'", base, of));
         value = pt->second;
       }
+      if (e.has("factor")) {
+        if (!e.has("baseline")) e.failAt("factor", "'factor' scales a 'baseline' (give 'value' scaled instead)");
+        const double f = e.number("factor");
+        value *= f;
+        if (f != 1.0) against += fmt::format(" x {:g}", f);
+      }
+      if (e.has("of") && !e.has("baseline")) e.failAt("of", "'of' names the probe of a 'baseline' check");
       const double relTol = e.number("rel_tol");
-      e.finish({"value", "equal_to", "baseline", "rel_tol"});
+      e.finish({"value", "equal_to", "baseline", "of", "factor", "rel_tol"});
       if (!(relTol >= 0)) e.failAt("rel_tol", "must be >= 0");
       // Relative error; for an expected 0 the tolerance is absolute (and shown as such, not as a percentage).
       const bool absolute = value == 0.0;

@@ -123,9 +123,17 @@ SETTINGS = {
     "load_relaxation": ("float", 1.0, 1e-3, 1.0,
                         "the canopy gets w f + (1 - w) f_previous of the flow's load f (1: off)"),
     "brake_right": ("float", 0.0, 0.0, 2.0,
-                    "coupled yes: the right toggle pulled down by this much [m] (0: held like the left one)"),
+                    "coupled yes: the right toggle pulled down by this much [m] (0: held)"),
+    "brake_left": ("float", 0.0, 0.0, 2.0,
+                   "coupled yes: the left toggle pulled down by this much [m] (0: held); both: a symmetric or "
+                   "differential brake"),
     "brake_start": ("float", 0.0, 0.0, 1e6, "coupled yes: when the pull starts [s]"),
     "brake_duration": ("float", 0.1, 1e-6, 1e6, "coupled yes: the pull's smooth ramp [s]"),
+    "brake_table": ("file", "", None, None,
+                    "coupled yes: the toggles' travel in time instead of brake_left/right/start/duration: a CSV "
+                    "file (relative to the settings file) with the header time,left,right and rows of t [s], "
+                    "left and right travel down [m, 0-2], times increasing; linear between rows, held after the "
+                    "last"),
     "trailing_edge_tape": (["no", "yes"], "no", None, None,
                            "coupled yes: a tape (cables) along the canopy's trailing edge, so that a brake line "
                            "draws the edge down over the span instead of denting the skin (docs/PARAFOIL.md)"),
@@ -207,6 +215,38 @@ class InputError(Exception):
     pass
 
 
+def read_brake_table(loc, key, text, base):
+    """brake_table FILE: the file's path (checked: a plain relative or absolute path, the file exists) and its
+    rows [[t, left, right], ...], validated with the file's own line numbers."""
+    if not re.fullmatch(r"[A-Za-z0-9._/+-]+", text):
+        raise InputError(f"{loc}: {key} '{text}': a file name of letters, digits and . _ / + - only")
+    path = text if os.path.isabs(text) else os.path.join(base, text)
+    try:
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().splitlines()
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{loc}: {key} {text}: cannot read it: {e}")
+    rows = []
+    body = [(n, l.split("#", 1)[0].strip()) for n, l in enumerate(lines, 1)]
+    body = [(n, l) for n, l in body if l]
+    if not body or [c.strip() for c in body[0][1].split(",")] != ["time", "left", "right"]:
+        raise InputError(f"{path}:{body[0][0] if body else 1}: the first line must be the header time,left,right")
+    for n, l in body[1:]:
+        cells = [c.strip() for c in l.split(",")]
+        if len(cells) != 3 or not all(NUMBER.match(c) for c in cells):
+            raise InputError(f"{path}:{n}: expected three numbers t,left,right, got '{l}'")
+        t, left, right = (float(c) for c in cells)
+        if rows and not t > rows[-1][0]:
+            raise InputError(f"{path}:{n}: time {t:g} does not follow {rows[-1][0]:g} (times must increase)")
+        for name, v in (("left", left), ("right", right)):
+            if not 0.0 <= v <= 2.0:
+                raise InputError(f"{path}:{n}: {name} travel {v:g} m is outside [0, 2]")
+        rows.append([t, left, right])
+    if not rows:
+        raise InputError(f"{path}: no rows after the header")
+    return {"file": os.path.abspath(path), "rows": rows}
+
+
 def read_settings(path):
     try:
         with open(path, encoding="utf-8") as f:
@@ -229,7 +269,9 @@ def read_settings(path):
         if key in values:
             raise InputError(f"{loc}: key '{key}' given twice (first at line {where[key]})")
         kind, _, lo, hi, what = SETTINGS[key]
-        if isinstance(kind, list):
+        if kind == "file":
+            value = read_brake_table(loc, key, text, os.path.dirname(os.path.abspath(path)))
+        elif isinstance(kind, list):
             if text not in kind:
                 raise InputError(f"{loc}: {key} must be one of {', '.join(kind)}, not '{text}'")
             value = text
@@ -276,6 +318,9 @@ def read_settings(path):
                          f"<= {4.0 / wall_factor(values):g} (4 / {wall_factor(values)}, now {values['courant']:g}), or "
                          "wall_after: the wall cells are that many times thinner than the cell the step is set on, and at "
                          "the main job's step the rigid start diverged (docs/AERODYNAMICS.md rung 3)")
+    if values["brake_table"] and (values["brake_left"] > 0 or values["brake_right"] > 0):
+        key = "brake_left" if values["brake_left"] > 0 else "brake_right"
+        raise InputError(f"{path}:{where[key]}: {key} with brake_table: the table gives both toggles' travel")
     if values["wall_split"] > 0 and values["wall_layers"] > 0:
         raise InputError(f"{path}:{where['wall_layers']}: wall_split and wall_layers exclude each other (two ways of "
                          "making thin cells at the wall)")
@@ -301,7 +346,7 @@ def read_settings(path):
                              "the structure's own surface (remove stl_bulge)")
     else:
         # The structure's keys mean nothing to a rigid wing: say so rather than run without them.
-        for key in ("brake_right", "trailing_edge_tape", "equilibrium_start", "keep_side", "gap_correction",
+        for key in ("brake_right", "brake_left", "brake_table", "trailing_edge_tape", "equilibrium_start", "keep_side", "gap_correction",
                     "smoothing_length", "conserve_moment", "remesh_below"):
             if key in where and values[key] != SETTINGS[key][1]:
                 raise InputError(f"{path}:{where[key]}: {key} needs coupled yes (the rigid wing has no structure)")
@@ -1002,20 +1047,19 @@ def write_structure(settings_path, scene_path, out_path):
             raise InputError(f"{scene_path}: trailing_edge_tape needs the canopy as meshes.wing.generator "
                              "(type: parafoil)")
         gen["trailing_edge_tape"] = True
-    if s["brake_right"] > 0:
-        # The right toggle leaves the held points and is drawn down (-z) with a smooth ramp.
+    # Brakes: each pulled toggle leaves the held points and is drawn down (-z), by a smooth ramp or the table
+    for side, function, amplitude in brake_inputs(s):
         cons = scene.get("constraints")
+        toggle = f"wing/toggle_{side}"
         held = next((c for c in cons if isinstance(c, dict) and c.get("fix") == "all"
-                     and isinstance(c.get("nodes"), list) and "wing/toggle_right" in c["nodes"]), None) \
+                     and isinstance(c.get("nodes"), list) and toggle in c["nodes"]), None) \
             if isinstance(cons, list) else None
         if held is None:
-            raise InputError(f"{scene_path}: brake_right needs a constraint {{nodes: [..., wing/toggle_right], fix: all}} "
-                             "holding the right toggle")
-        held["nodes"] = [n for n in held["nodes"] if n != "wing/toggle_right"]
-        cons.append({"nodes": "wing/toggle_right",
-                     "prescribe": {"direction": [0, 0, -1], "amplitude": float(f"{s['brake_right']:.9g}"),
-                                   "function": {"type": "smooth_step", "start": float(f"{s['brake_start']:.9g}"),
-                                                "duration": float(f"{s['brake_duration']:.9g}")}}})
+            raise InputError(f"{scene_path}: brake_{side} needs a constraint {{nodes: [..., {toggle}], fix: all}} "
+                             f"holding the {side} toggle")
+        held["nodes"] = [n for n in held["nodes"] if n != toggle]
+        cons.append({"nodes": toggle, "prescribe": {"direction": [0, 0, -1], "amplitude": amplitude,
+                                                     "function": function}})
     if "coupling" in scene:
         raise InputError(f"{scene_path}: has a 'coupling' entry: the case sets it (interface: wing/skin)")
     scene["coupling"] = {"interface": "wing/skin"}
@@ -1271,7 +1315,7 @@ def summary(case):
         if os.path.exists(os.path.join(case, "log.checkMesh.final")):
             out["mesh_final"] = check_mesh(case, "log.checkMesh.final")
         out["remeshes"] = remeshes(case)
-        if s["brake_right"] > 0 and out["coupled"].get("windows"):
+        if brake_window(s) and out["coupled"].get("windows"):
             out["coupled"]["brake"] = brake_response(case, s, d, out["remeshes"])
         if out["coupled"].get("windows"):
             sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -1314,13 +1358,15 @@ def summary(case):
     b = out.get("coupled", {}).get("brake")
     if b and b["held"]:
         h, p = b["held"], b["before"]
-        print(f"right brake {b['travel_m']:g} m, held for {b['held_windows']} windows: load about the anchor yaw "
-              f"{h['yaw_Nm']:.3f} N m ({'a right turn' if h['yaw_Nm'] < 0 else 'NOT a right turn'}; before "
+        turn = "a right turn" if h["yaw_Nm"] < 0 else "a left turn"
+        print(f"brakes left/right {b['travel_left_m']:g} / {b['travel_right_m']:g} m (asks for a "
+              f"{b['turn_asked']} turn), held for {b['held_windows']} windows: load about the anchor yaw "
+              f"{h['yaw_Nm']:.3f} N m ({turn}; before "
               f"{p['yaw_Nm']:.3f}), roll {h['roll_Nm']:.3f} N m (before {p['roll_Nm']:.3f}), side force "
               f"{h['side_N']:.2f} N, brake lines right/left {h['brake_right_N']:.1f} / {h['brake_left_N']:.1f} N; "
               f"{len(b['new_meshes'])} new meshes since the pull began; plots/brake.png")
     elif b:
-        print("right brake: the run ended before the ramp did (plots/brake.png)")
+        print("brakes: the run ended before the pull did (plots/brake.png)")
     if "flow" in out:
         fl = out["flow"]
         print(f"flow: {fl['steps']} steps, CL {fl['CL']:.4f}, CD {fl['CD']:.4f}, L/D {fl['L_over_D']:.2f} "
@@ -1330,17 +1376,59 @@ def summary(case):
               f"{fl.get('wall_s_per_step', float('nan')):.3f} s per step")
 
 
+def brake_inputs(s):
+    """The pulled toggles: (side, time function, amplitude [m]) for each side that moves, from brake_left/right
+    with brake_start/duration (a smooth ramp) or from brake_table (a table function of the travel in metres)."""
+    out = []
+    table = s.get("brake_table")
+    for side, col in (("left", 1), ("right", 2)):
+        if table:
+            rows = table["rows"]
+            if max(r[col] for r in rows) > 0:
+                out.append((side, {"type": "table", "points": [[float(f"{r[0]:.9g}"), float(f"{r[col]:.9g}")]
+                                                                for r in rows]}, 1.0))
+        elif s.get(f"brake_{side}", 0.0) > 0:
+            out.append((side, {"type": "smooth_step", "start": float(f"{s['brake_start']:.9g}"),
+                               "duration": float(f"{s['brake_duration']:.9g}")},
+                        float(f"{s[f'brake_{side}']:.9g}")))
+    return out
+
+
+def brake_window(s):
+    """(start, end) of the brake input [s]: the ramp's, or the table's from the row before its first travel to its
+    last row; None without a brake."""
+    table = s.get("brake_table")
+    if table:
+        rows = table["rows"]
+        first = next((i for i, r in enumerate(rows) if r[1] > 0 or r[2] > 0), None)
+        if first is None:
+            return None
+        return rows[max(first - 1, 0)][0], rows[-1][0]
+    if s.get("brake_left", 0.0) > 0 or s.get("brake_right", 0.0) > 0:
+        return s["brake_start"], s["brake_start"] + s["brake_duration"]
+    return None
+
+
+def brake_travel(s):
+    """The toggles' travel held at the end [m]: (left, right)."""
+    table = s.get("brake_table")
+    if table:
+        return table["rows"][-1][1], table["rows"][-1][2]
+    return s.get("brake_left", 0.0), s.get("brake_right", 0.0)
+
+
 def brake_response(case, s, d, new_meshes):
-    """What the pulled right brake does (brake_right > 0): the loads on the wing before the pull (the mean of
-    the last 20 windows before brake_start) and while the toggle is held (the mean of the windows after the
-    ramp), and their histories in plots/brake.png. Signs as a pilot reads them, for the flow's load on the
+    """What the pulled brakes do (brake_left, brake_right or brake_table): the loads on the wing before the pull
+    (the mean of the last 20 windows before it starts) and while the toggles are held (the mean of the windows
+    after the ramp or the table's last row), and their histories in plots/brake.png. Signs as a pilot reads them, for the flow's load on the
     wing about the anchor (the supports' reaction with the opposite sign; x downstream, y to the right, z up):
     yaw < 0 turns the nose (-x) towards +y, a right turn; roll > 0 lifts the right wing."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import summarize
 
     rows = summarize.coupling_rows(case)
-    t0, t1 = s["brake_start"], s["brake_start"] + s["brake_duration"]
+    t0, t1 = brake_window(s)
+    left, right = brake_travel(s)
     lift_dir, flow_dir = d["lift_dir"], d["flow_dir"]
 
     def dot(a, b):
@@ -1360,12 +1448,16 @@ def brake_response(case, s, d, new_meshes):
     def mean(part):
         return {k: sum(x[k] for x in part) / len(part) for k in part[0]} if part else None
 
-    out = {"start_s": t0, "end_of_ramp_s": t1, "travel_m": s["brake_right"], "before": mean(before),
+    out = {"start_s": t0, "end_of_ramp_s": t1, "travel_m": right, "travel_left_m": left, "travel_right_m": right,
+           "before": mean(before),
            "held": mean(held), "held_windows": len(held),
            "new_meshes": [m["time"] for m in new_meshes if m["time"] >= t0 - 1e-9]}
     if held:
         h = out["held"]
         out["right_turn"] = h["yaw_Nm"] < 0 and h["brake_right_N"] > h["brake_left_N"]
+        out["left_turn"] = h["yaw_Nm"] > 0 and h["brake_left_N"] > h["brake_right_N"]
+        # the turn the inputs ask for: the side pulled further (a symmetric pull asks for none)
+        out["turn_asked"] = "right" if right > left else "left" if left > right else "none"
         out["held_range"] = {k: [min(x[k] for x in held), max(x[k] for x in held)] for k in held[0]}
     plot_brake(case, t, v, out)
     return out
@@ -1400,7 +1492,8 @@ def plot_brake(case, t, v, b):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="best")
     axes[-1].set_xlabel("time [s]")
-    fig.suptitle(f"right brake {b['travel_m']:g} m down over {b['end_of_ramp_s'] - b['start_s']:g} s")
+    fig.suptitle(f"brakes left {b['travel_left_m']:g} m, right {b['travel_right_m']:g} m down, from "
+                 f"{b['start_s']:g} to {b['end_of_ramp_s']:g} s")
     fig.tight_layout()
     os.makedirs(os.path.join(case, "plots"), exist_ok=True)
     fig.savefig(os.path.join(case, "plots", "brake.png"), dpi=110)
@@ -1435,15 +1528,16 @@ def write_table(case, out):
     if b and b["held"]:
         h, p = b["held"], b["before"]
         rows += [
-            ("right brake held: yaw, roll of the load about the anchor [N m]",
+            (f"brakes held (left {b['travel_left_m']:g} m, right {b['travel_right_m']:g} m): yaw, roll of the load "
+             "about the anchor [N m]",
              f"{h['yaw_Nm']:.3f}, {h['roll_Nm']:.3f} (before the pull {p['yaw_Nm']:.3f}, {p['roll_Nm']:.3f})",
-             "yaw < 0: the nose turns right (a right turn); roll > 0: the braked right wing lifted"),
-            ("right brake held: side force, lift, drag [N]",
+             "yaw < 0: the nose turns right (a right turn), > 0 left; roll > 0: the right wing lifted"),
+            ("brakes held: side force, lift, drag [N]",
              f"{h['side_N']:.2f}, {h['lift_N']:.2f}, {h['drag_N']:.2f} (before {p['side_N']:.2f}, {p['lift_N']:.2f}, "
              f"{p['drag_N']:.2f})", f"means over the {b['held_windows']} windows after the ramp; plots/brake.png"),
         ]
     elif b:
-        rows.append(("right brake", "the run ended before the ramp did", "plots/brake.png"))
+        rows.append(("brakes", "the run ended before the pull did", "plots/brake.png"))
     if c.get("skin_folds") is not None:
         rows.append(("skin edges turned > 90 deg from the design (folds probe)", f"{c['skin_folds']:.0f}",
                      "the trailing edge's crumple (docs/RAMAIR.md)"))
@@ -1552,7 +1646,10 @@ def settings_table():
     rows = ["| key | default | range | meaning |", "|---|---|---|---|"]
     for key, (kind, default, lo, hi, text) in SETTINGS.items():
         dflt = "required" if default is None else num(default)
-        rng = ", ".join(kind) if isinstance(kind, list) else f"{num(lo)} – {num(hi)}" + (" (whole)" if kind == "int" else "")
+        if kind == "file":
+            dflt, rng = "none", "a CSV file"
+        else:
+            rng = ", ".join(kind) if isinstance(kind, list) else f"{num(lo)} – {num(hi)}" + (" (whole)" if kind == "int" else "")
         rows.append(f"| `{key}` | {dflt} | {rng} | {text.replace('|', '/')} |")
     return "\n".join(rows) + "\n"
 
@@ -1569,7 +1666,8 @@ def main(argv):
         cmd, args = argv[1], argv[2:]
         if cmd == "check":
             s = read_settings(args[0])
-            print(" ".join(f"{k}={v}" for k, v in s.items()))
+            # one word per key (a brake table as its file): Allrun reads these with sed
+            print(" ".join(f"{k}={v['file'] if isinstance(v, dict) else v}" for k, v in s.items()))
         elif cmd == "generate-args":
             # The skin the fluid sees: the same generator, sampled finer than the structure (the coupling
             # maps between the two). Only validated whole numbers are printed.

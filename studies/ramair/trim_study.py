@@ -81,6 +81,13 @@ def runs():
                                           "carry_after": 800, "write_interval": 80, "equilibrium_steps": 50},
                           BENDING, {"structure": "s1", "fluid": "f3", "h": 1.0, "bending": True,
                                     "variant": "wall cells split twice from the start, a quarter of the step"})
+    # f3 on other rigging angles: on the main job's 13 deg the canopy with the thin wall cells swings back into a
+    # deep stall (s1-f3); does another rigging trim it? (remeshing lets the mesh follow a larger swing)
+    for r in (9, 17):
+        out[f"rig{r:02d}-f3"] = ("convergence", {**FLUID_LEVELS["f3"], "remesh_below": 0.1, "remesh_max": 10},
+                                 {"rigging_angle": r, **BENDING},
+                                 {"structure": "s1", "fluid": "f3", "h": 1.0, "bending": True, "rigging_angle_deg": r,
+                                  "variant": f"rigging angle {r} deg"})
     out["s1-f3-split"] = ("convergence", {"wall_split": 2, "wall_after": 400, "steps": 700}, BENDING,
                           {"structure": "s1", "fluid": "f3", "h": 1.0, "bending": True,
                            "variant": "wall cells split twice from step 400 (wall_after)"})

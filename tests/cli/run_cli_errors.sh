@@ -145,6 +145,15 @@ printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.y
   "    set: 'effects.pressure={triangles: sheet, value: 2.0e4}'" "    expect: {centre: {baseline: first, rel_tol: 1.0e-3}}" \
   > case8/reference.yaml
 expect 1 "FAIL" -- "$fsi" validate case8 --out v8 --quiet
+# baseline's `of` (another probe of the earlier check) and `factor` (a mirror image's sign): only with a baseline
+mkdir -p case9 case10 && cp good.yaml case9/scene.yaml && cp good.yaml case10/scene.yaml
+printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.yaml" \
+  "    expect: {centre: {value: 0, rel_tol: 1, of: centre}}" > case9/reference.yaml
+expect 2 "checks[0].expect.centre.of: 'of' names the probe of a 'baseline' check" -- "$fsi" validate case9 --out v9 --quiet
+printf '%s\n' "reference: test" "checks:" "  - label: first" "    scene: scene.yaml" \
+  "    expect: {centre: {value: 0, rel_tol: 1}}" "  - label: second" "    scene: scene.yaml" \
+  "    expect: {centre: {baseline: first, of: centre, factor: -1, rel_tol: 0}}" > case10/reference.yaml
+expect 0 "second: centre vs first x -1" -- "$fsi" validate case10 --out v10 --quiet
 
 # Dynamic-relaxation traps (issue 34): a load whose time function is 0 at load_time, a structure nobody holds,
 # absurd strains -- each said in the message, not left to 200,000 silent iterations.

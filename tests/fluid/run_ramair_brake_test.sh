@@ -26,7 +26,7 @@ grep -q '^remesh_below' short.settings || fail "brake.settings has no remesh_bel
 start=$(date +%s)
 ./Allrun.parallel -settings short.settings > ../brake.log 2>&1 || { tail -30 ../brake.log; fail "Allrun.parallel failed"; }
 echo "Allrun.parallel: $(($(date +%s) - start)) s"
-grep "New mesh\|right brake" ../brake.log
+grep "New mesh\|brakes left" ../brake.log
 
 /usr/bin/python3 - <<'PY'
 import json, os, struct, sys
@@ -58,7 +58,7 @@ if b and b.get("held"):
     check(h["brake_right_N"] > 3 * h["brake_left_N"], "the right brake lines do not carry the pull")
     check(b["right_turn"], "summary.json: right_turn false")
 md = open("summary.md").read()
-check("right brake held" in md, "summary.md has no brake rows")
+check("brakes held" in md, "summary.md has no brake rows")
 png = "plots/brake.png"
 if not os.path.exists(png):
     bad.append("no plots/brake.png")

@@ -64,6 +64,13 @@ void validate(const ParafoilParams& q) {
                                                       q.rows[i], q.rows[i - 1]));
   }
   if (q.rows.size() > 26) invalid("rows", "has more than 26 rows (A to Z)");
+  if (!q.rowTrim.empty() && q.rowTrim.size() != q.rows.size())
+    invalid("row_trim", fmt::format("has {} entries for {} rows; give one per row (A first) or leave it out",
+                                    q.rowTrim.size(), q.rows.size()));
+  for (std::size_t i = 0; i < q.rowTrim.size(); ++i)
+    if (!std::isfinite(q.rowTrim[i]))
+      invalid(fmt::format("row_trim[{}]", i),
+              fmt::format("is {}; valid: a finite length in metres", q.rowTrim[i]));
   if (q.cascade < 1) invalid("cascade", fmt::format("is {}; valid: at least 1 (1 = no cascade)", q.cascade));
   requireRange("cascade_fraction", q.cascadeFraction, 0, 1, true, true);
   requireRange("line_length", q.lineLength, 0, inf, true, true);
@@ -345,12 +352,31 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
       groups.push_back(centre);
       sides.emplace_back();
     }
+    // row_trim: the line into the confluence (the whole line, or the main line of a cascade) lengthened by
+    // the row's trim, every cable of it in proportion; a trim that takes half the line or more is refused
+    const double trim = q.rowTrim.empty() ? 0.0 : q.rowTrim[row];
+    auto trimmed = [&](int from, std::size_t first) {
+      if (trim == 0.0) return;
+      const double span = distance(m.points[std::size_t(from)], conf);
+      if (!(trim > -0.5 * span))
+        invalid(fmt::format("row_trim[{}]", row),
+                fmt::format(
+                    "is {} m: row {}'s line into the confluence is {:.4g} m long; valid: above minus half "
+                    "of it",
+                    trim, char('A' + row), span));
+      m.lineRestLength.resize(m.lines.size(), 0.0);
+      for (std::size_t e = first; e < m.lines.size(); ++e)
+        m.lineRestLength[e] =
+            distance(m.points[m.lines[e][0]], m.points[m.lines[e][1]]) * (span + trim) / span;
+    };
     for (std::size_t gi = 0; gi < groups.size(); ++gi) {
       const auto& g = groups[gi];
       std::vector<std::string> tags{"lines", rowGroup};
       if (!sides[gi].empty()) tags.push_back(sides[gi]);
       if (q.cascade == 1) {
+        const std::size_t first = m.lines.size();
         chain(attach(g[0]), confluence, tags);
+        trimmed(attach(g[0]), first);
         continue;
       }
       P3 mean{0, 0, 0};
@@ -360,7 +386,9 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
       for (int r : g) chain(attach(r), junction, tags);
       std::vector<std::string> mainTags{"lines", "main_lines"};
       if (!sides[gi].empty()) mainTags.push_back(sides[gi]);
+      const std::size_t first = m.lines.size();
       chain(junction, confluence, mainTags);
+      trimmed(junction, first);
     }
   }
   std::sort(attachments.begin(), attachments.end());

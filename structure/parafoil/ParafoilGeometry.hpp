@@ -70,6 +70,10 @@ struct ParafoilParams {
   double lineLength = 0.7;                           ///< confluence distance / span
   double riggingDeg = 5.0;                           ///< forward tilt of the confluence point [deg]
   int lineElements = 4;                              ///< cables per line segment
+  /// Extra length of each row's lines [m], A first (empty: none): the trim a rigger sets. A row's line from
+  /// its attachment to the confluence point is that much longer (negative: shorter) than the design distance;
+  /// with cascades its main line (junction -> confluence) carries it, every cable longer in proportion.
+  std::vector<double> rowTrim;
   // Brakes.
   int brakePoints = 3;           ///< trailing-edge points per side (at the outermost ribs); 0 = no brakes
   double toggleFraction = 0.15;  ///< toggle along confluence -> mean brake point

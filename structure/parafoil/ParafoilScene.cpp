@@ -30,6 +30,7 @@ const std::vector<std::string>& parafoilKeys() {
                                              "line_length",
                                              "rigging_angle",
                                              "line_elements",
+                                             "row_trim",
                                              "brake_points",
                                              "toggle_fraction",
                                              "brake_slack",
@@ -92,6 +93,7 @@ ParafoilParams readParafoilParams(const YamlMap& g, const std::filesystem::path&
   q.lineLength = g.number("line_length", q.lineLength);
   q.riggingDeg = g.number("rigging_angle", q.riggingDeg);
   q.lineElements = int(g.integer("line_elements", q.lineElements, positive));
+  if (g.has("row_trim")) q.rowTrim = g.numbers("row_trim");
   q.brakePoints = int(g.integer("brake_points", q.brakePoints, {0, 10000}));
   q.toggleFraction = g.number("toggle_fraction", q.toggleFraction);
   q.brakeSlack = g.number("brake_slack", q.brakeSlack);

@@ -352,6 +352,67 @@ TEST(ParafoilGeometry, BrakeSlackLengthensEachBrakeLineByTheSlack) {
   EXPECT_THROW(buildParafoil(q), InputError);
 }
 
+// row_trim: each row's line into the confluence point (with cascades its main line) is longer by the row's
+// trim than the design distance, every cable of it in proportion; the other lines keep their design length; a
+// trim per row or none, and one that takes half the line or more, are refused.
+TEST(ParafoilGeometry, RowTrimLengthensEachRowsLineIntoTheConfluenceByItsTrim) {
+  for (const int cascade : {1, 2}) {
+    ParafoilParams q = untwisted(24, 2);
+    q.cascade = cascade;
+    q.rowTrim = {-0.02, 0.0, 0.01, 0.03};
+    const MeshData m = buildParafoil(q);
+    ASSERT_EQ(m.lineRestLength.size(), m.lines.size());
+    const int confluence = m.nodeGroups.at("confluence")[0];
+    auto length = [&](int a, int b) {
+      const auto &u = m.points[std::size_t(a)], &v = m.points[std::size_t(b)];
+      return std::hypot(u[0] - v[0], u[1] - v[1], u[2] - v[2]);
+    };
+    // the lines into the confluence, by row: walk each row's cables ending at the confluence back to their
+    // start
+    std::set<int> trimmed;
+    for (std::size_t r = 0; r < q.rows.size(); ++r) {
+      const auto& row = m.lineGroups.at(std::string("lines_") + char('A' + r));
+      const std::set<int> rowSet(row.begin(), row.end());
+      const auto& candidates = cascade == 1 ? row : m.lineGroups.at("main_lines");
+      int lines = 0;
+      for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const int e = candidates[k];
+        if (m.lines[std::size_t(e)][1] != confluence) continue;
+        // the line's cables are consecutive, the last one ending at the confluence
+        const int first = e - q.lineElements + 1;
+        const int start = m.lines[std::size_t(first)][0];
+        if (cascade == 2) {
+          // a main line belongs to row r when its junction is where row r's upper lines end
+          bool ofRow = false;
+          for (const int u : row) ofRow = ofRow || m.lines[std::size_t(u)][1] == start;
+          if (!ofRow) continue;
+        } else if (!rowSet.count(e)) {
+          continue;
+        }
+        double rest = 0;  // a rest length of 0 stands for the design distance of the cable's ends
+        for (int j = first; j <= e; ++j) {
+          const double r0 = m.lineRestLength[std::size_t(j)];
+          rest += r0 > 0 ? r0 : length(m.lines[std::size_t(j)][0], m.lines[std::size_t(j)][1]);
+          if (q.rowTrim[r] != 0.0) trimmed.insert(j);
+        }
+        EXPECT_NEAR(rest, length(start, confluence) + q.rowTrim[r], 1e-12)
+            << "row " << char('A' + r) << ", cascade " << cascade;
+        ++lines;
+      }
+      EXPECT_GT(lines, 0) << "row " << char('A' + r);
+    }
+    for (std::size_t e = 0; e < m.lines.size(); ++e)
+      if (!trimmed.count(int(e))) {
+        EXPECT_EQ(m.lineRestLength[e], 0.0) << "cable " << e << " is not a trimmed line's";
+      }
+  }
+  ParafoilParams q = untwisted(24, 2);
+  q.rowTrim = {0.01, 0.02};  // four rows
+  EXPECT_THROW(buildParafoil(q), InputError);
+  q.rowTrim = {-2.0, 0, 0, 0};  // more than half of a 2 m line
+  EXPECT_THROW(buildParafoil(q), InputError);
+}
+
 TEST(ParafoilGeometry, BulgedCellsAreCircularArcsBetweenTheRibs) {
   // Flat and bulged designs differ only between the ribs: the rib nodes stay, and at the thickest chord
   // station the skin node at mid-cell stands out by bulge·w (w = b / cells), the others on the circular arc

@@ -23,3 +23,11 @@ add_test(NAME validation.parafoil-trailing-edge
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/parafoil_trailing_edge.py $<TARGET_FILE:fsi>
                  ${PROJECT_BINARY_DIR}/validation/parafoil-trailing-edge)
 set_tests_properties(validation.parafoil-trailing-edge PROPERTIES TIMEOUT 600 LABELS validation)
+
+# The parafoil generator's row_trim against the rigid-canopy estimate: rows trimmed in proportion turn the
+# inflated canopy nose-down by about trim / row spread; one row lengthened alone only slackens it
+# (tests/validation/parafoil_row_trim.py, about 30 s).
+add_test(NAME validation.parafoil-row-trim
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/parafoil_row_trim.py $<TARGET_FILE:fsi>
+                 ${PROJECT_BINARY_DIR}/validation/parafoil-row-trim)
+set_tests_properties(validation.parafoil-row-trim PROPERTIES TIMEOUT 600 LABELS validation)

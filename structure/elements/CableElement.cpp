@@ -1,8 +1,12 @@
 #include "structure/elements/CableElement.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
 
 #include "structure/elements/CableForces.hpp"
 #include "structure/scene/ReadMaterials.hpp"
@@ -95,14 +99,84 @@ void CableKind::addFields(const Model& model, const double* x, const std::set<st
   views.push_back({"cable_force", FieldView::Center::Line, 1, buffers.arrays[0].data()});
 }
 
+namespace {
+
+// Keeps the lines of the named groups (all of them for "all") as the mesh's cables; every other line group
+// becomes a node group of its nodes (a Physical Curve named for a constraint or a probe, not a cable).
+void keepCableGroups(MeshData& mesh, const std::vector<std::string>& names, const YamlMap& entry) {
+  const bool all = names.size() == 1 && names[0] == "all";
+  std::vector<char> keep(mesh.lines.size(), all ? 1 : 0);
+  if (!all)
+    for (const std::string& n : names) {
+      const auto it = mesh.lineGroups.find(n);
+      if (it == mesh.lineGroups.end()) {
+        std::string known;
+        for (const auto& [g, lines] : mesh.lineGroups) known += (known.empty() ? "" : ", ") + g;
+        entry.failAt("cables", fmt::format("the mesh has no line group (Physical Curve) '{}'; it has: {}", n,
+                                           known.empty() ? "none" : known));
+      }
+      for (const int e : it->second) keep[std::size_t(e)] = 1;
+    }
+  std::vector<int> index(mesh.lines.size(), -1);
+  std::vector<std::array<int, 2>> lines;
+  std::vector<long> tags;
+  std::vector<double> rest;
+  for (std::size_t e = 0; e < mesh.lines.size(); ++e) {
+    if (!keep[e]) continue;
+    index[e] = int(lines.size());
+    lines.push_back(mesh.lines[e]);
+    if (e < mesh.lineTags.size()) tags.push_back(mesh.lineTags[e]);
+    if (e < mesh.lineRestLength.size()) rest.push_back(mesh.lineRestLength[e]);
+  }
+  std::map<std::string, std::vector<int>> groups;
+  for (auto& [name, members] : mesh.lineGroups) {
+    std::vector<int> kept;
+    std::set<int> nodes;
+    for (const int e : members) {
+      if (index[std::size_t(e)] >= 0) kept.push_back(index[std::size_t(e)]);
+      nodes.insert(mesh.lines[std::size_t(e)][0]);
+      nodes.insert(mesh.lines[std::size_t(e)][1]);
+    }
+    if (!kept.empty()) groups[name] = std::move(kept);
+    // its nodes stay a node set under the same name (joined with a node group of that name, if any)
+    std::vector<int>& ng = mesh.nodeGroups[name];
+    nodes.insert(ng.begin(), ng.end());
+    ng.assign(nodes.begin(), nodes.end());
+  }
+  mesh.lines = std::move(lines);
+  mesh.lineTags = std::move(tags);
+  mesh.lineRestLength = std::move(rest);
+  mesh.lineGroups = std::move(groups);
+}
+
+}  // namespace
+
 void CableKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
   if (entry.has("cable_material"))
     in.cableMaterial = materialRef(entry, "cable_material", materialsOfKind(materials, "cable"), "cable");
+  // Which line elements of a mesh file are cables is said, not assumed: a Physical Curve may name nodes for a
+  // constraint or a probe. A generator's lines are its cables (suspension lines, tapes).
+  if (entry.has("cables")) {
+    const YAML::Node n = entry.raw("cables");
+    const std::vector<std::string> names =
+        n.IsScalar() ? std::vector<std::string>{entry.choice("cables", {"all"})} : entry.strings("cables");
+    keepCableGroups(in.mesh, names, entry);
+  } else if (entry.has("file") && !in.mesh.lines.empty()) {
+    if (in.cableMaterial >= 0) {
+      std::string known;
+      for (const auto& [g, lines] : in.mesh.lineGroups) known += (known.empty() ? "" : ", ") + g;
+      entry.fail(fmt::format(
+          "this mesh file has line elements (Physical Curves: {}) and a cable_material: say which are cables "
+          "with 'cables: [NAMES]' or 'cables: all' (the others stay node sets for constraints and probes)",
+          known.empty() ? "unnamed" : known));
+    }
+    keepCableGroups(in.mesh, {}, entry);  // no cable material: every curve is a node set
+  }
 }
 
 void CableKind::checkMeshInput(const YamlMap& entry, const MeshInput& in) const {
   if (!in.mesh.lines.empty() && in.cableMaterial < 0)
-    entry.fail("this mesh has lines: give it a 'cable_material'");
+    entry.fail("this mesh has cables: give it a 'cable_material'");
 }
 
 }  // namespace fsi::structure

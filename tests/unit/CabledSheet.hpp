@@ -64,7 +64,7 @@ inline std::string writeCabledSheet(const std::filesystem::path& dir, int n, con
   film: {{type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: 1000}}
   rope: {{type: cable, young: 1.0e10, area: 1.0e-6, density: 1000}}
 meshes:
-  sheet: {{file: sheet.msh, material: film, cable_material: rope}}
+  sheet: {{file: sheet.msh, material: film, cable_material: rope, cables: all}}
 constraints:
   - {{nodes: sheet/boundary, fix: all}}
 {}effects:

@@ -2,10 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <string>
 
+#include "TestScenes.hpp"
 #include "structure/elements/ElementKind.hpp"
 #include "structure/elements/PointMassElement.hpp"
 #include "structure/material/MaterialTypes.hpp"
@@ -142,7 +144,7 @@ time: {end: 1.0e-3}
 // where the mesh comes from), so a misspelt key is answered from the registry.
 TEST(ElementKinds, DeclareTheMeshKeysTheyRead) {
   EXPECT_EQ(findElementKind("membrane")->meshKeys(), std::vector<std::string>{"material"});
-  EXPECT_EQ(findElementKind("cable")->meshKeys(), std::vector<std::string>{"cable_material"});
+  EXPECT_EQ(findElementKind("cable")->meshKeys(), (std::vector<std::string>{"cable_material", "cables"}));
   EXPECT_EQ(findElementKind("point_mass")->meshKeys(), std::vector<std::string>{"point_masses"});
   std::set<std::string> keys;
   for (const ElementKind* k : elementKinds())
@@ -164,6 +166,55 @@ meshes:
   }
   EXPECT_NE(what.find("keys.yaml:8"), std::string::npos) << what;
   EXPECT_NE(what.find("did you mean 'point_masses'"), std::string::npos) << what;
+}
+
+// Which Physical Curves of a Gmsh file are cables is said (`cables: [NAMES]` or `cables: all`), not assumed:
+// a curve named for a constraint stays a node set. A file with curves and a cable_material but no `cables` is
+// an error naming the key and the curves; without a cable_material every curve is a node set; an unknown name
+// is an error listing the curves there are.
+TEST(ElementKinds, CablesOfAMeshFileAreNamedTheOtherCurvesStayNodeSets) {
+  const std::filesystem::path dir = fsi::test::outDir("curves");
+  std::filesystem::create_directories(dir);
+  {
+    // a unit square of two triangles; curve `edge` along y = 0 (for a constraint), curve `diagonal` a cable
+    std::ofstream out(dir / "sheet.msh");
+    out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n1 1 \"edge\"\n1 2 \"diagonal\"\n"
+           "2 3 \"sheet\"\n$EndPhysicalNames\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n"
+           "$Elements\n4\n1 1 2 1 1 1 2\n2 1 2 2 2 1 3\n3 2 2 3 3 1 2 3\n4 2 2 3 3 1 3 4\n$EndElements\n";
+  }
+  auto scene = [&](const std::string& keys) {
+    std::ofstream out(dir / "s.yaml");
+    out << "materials:\n  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: "
+           "1000}\n"
+           "  rope: {type: cable, young: 1.0e10, area: 1.0e-6, density: 1000}\n"
+           "meshes:\n  sheet: {file: sheet.msh, material: film"
+        << keys << "}\nconstraints:\n  - {nodes: sheet/edge, fix: all}\ntime: {end: 1.0e-4}\n";
+    out.close();
+    return loadScene(dir / "s.yaml");
+  };
+  const Scene named = scene(", cable_material: rope, cables: [diagonal]");
+  EXPECT_EQ(named.model->cables.count, 1);  // the diagonal; the edge is the constraint's node set
+  EXPECT_EQ(named.constraints.fixedDofs.size(), 6u);
+  EXPECT_EQ(scene(", cable_material: rope, cables: all").model->cables.count, 2);
+  const Scene plain = scene("");
+  EXPECT_EQ(plain.model->cables.count, 0);
+  EXPECT_EQ(plain.constraints.fixedDofs.size(), 6u);
+  std::string what;
+  try {
+    scene(", cable_material: rope");
+  } catch (const fsi::InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("Physical Curves: diagonal, edge"), std::string::npos) << what;
+  EXPECT_NE(what.find("'cables: [NAMES]'"), std::string::npos) << what;
+  what.clear();
+  try {
+    scene(", cable_material: rope, cables: [rim]");
+  } catch (const fsi::InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("no line group (Physical Curve) 'rim'; it has: diagonal, edge"), std::string::npos)
+      << what;
 }
 
 // A kind other than membranes and cables builds its own block of the model (buildModel calls it with the

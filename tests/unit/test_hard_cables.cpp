@@ -91,7 +91,7 @@ TEST(HardCable, NetGoingSlackAndSnappingTautReturnsToItsStaticState) {
   line: {type: cable, young: 1.0e9, area: 1.0e-5, density: 1000}
   bob: {type: point_mass, mass: 0.1}
 meshes:
-  net: {file: net.msh, cable_material: line, point_masses: {center: bob}}
+  net: {file: net.msh, cable_material: line, cables: all, point_masses: {center: bob}}
 constraints:
   - {nodes: net/anchors, fix: all}
 effects:

@@ -149,6 +149,41 @@ void keepCableGroups(MeshData& mesh, const std::vector<std::string>& names, cons
   mesh.lineGroups = std::move(groups);
 }
 
+// edge_cables: a cable on every boundary edge of the mesh's triangles (an edge of one triangle only) whose
+// two nodes are in the named node group, under a line group of the same name: a tape or a rope along a
+// generated membrane's edge without a mesh file.
+void addEdgeCables(MeshData& mesh, const std::vector<std::string>& names, const YamlMap& entry) {
+  std::map<std::pair<int, int>, int> edgeUse;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[std::size_t(k)], b = t[std::size_t((k + 1) % 3)];
+      ++edgeUse[{std::min(a, b), std::max(a, b)}];
+    }
+  for (const std::string& name : names) {
+    const auto it = mesh.nodeGroups.find(name);
+    if (it == mesh.nodeGroups.end()) {
+      std::string known;
+      for (const auto& [g, nodes] : mesh.nodeGroups) known += (known.empty() ? "" : ", ") + g;
+      entry.failAt("edge_cables", fmt::format("the mesh has no node group '{}'; it has: {}", name,
+                                              known.empty() ? "none" : known));
+    }
+    const std::set<int> nodes(it->second.begin(), it->second.end());
+    std::vector<int>& group = mesh.lineGroups[name];
+    const std::size_t before = group.size();
+    for (const auto& [edge, uses] : edgeUse)
+      if (uses == 1 && nodes.count(edge.first) && nodes.count(edge.second)) {
+        group.push_back(int(mesh.lines.size()));
+        mesh.lines.push_back({edge.first, edge.second});
+        mesh.lineTags.push_back(long(mesh.lines.size()));
+      }
+    if (group.size() == before)
+      entry.failAt("edge_cables", fmt::format("the node group '{}' has no edge on the boundary of the mesh's "
+                                              "triangles: no cable to lay along it",
+                                              name));
+  }
+  if (!mesh.lineRestLength.empty()) mesh.lineRestLength.resize(mesh.lines.size(), 0.0);
+}
+
 }  // namespace
 
 void CableKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
@@ -172,6 +207,7 @@ void CableKind::readMeshKeys(const YamlMap& entry, const MaterialTable& material
     }
     keepCableGroups(in.mesh, {}, entry);  // no cable material: every curve is a node set
   }
+  if (entry.has("edge_cables")) addEdgeCables(in.mesh, entry.strings("edge_cables"), entry);
 }
 
 void CableKind::checkMeshInput(const YamlMap& entry, const MeshInput& in) const {

@@ -15,7 +15,7 @@ class CableKind final : public ElementKind {
     return model.describeCable(element);
   }
   /// `cable_material: NAME`, a cable material.
-  std::vector<std::string> meshKeys() const override { return {"cable_material", "cables"}; }
+  std::vector<std::string> meshKeys() const override { return {"cable_material", "cables", "edge_cables"}; }
   void readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const override;
   void checkMeshInput(const YamlMap& entry, const MeshInput& in) const override;
   std::unique_ptr<Effect> makeForces(const Model& model, const ElementDamping& damping) const override;

@@ -16,6 +16,7 @@
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::structure;
+using fsi::test::sceneError;
 
 TEST(ElementKinds, RegistryNamesAreUniqueAndFindable) {
   std::set<std::string> names;
@@ -144,7 +145,8 @@ time: {end: 1.0e-3}
 // where the mesh comes from), so a misspelt key is answered from the registry.
 TEST(ElementKinds, DeclareTheMeshKeysTheyRead) {
   EXPECT_EQ(findElementKind("membrane")->meshKeys(), std::vector<std::string>{"material"});
-  EXPECT_EQ(findElementKind("cable")->meshKeys(), (std::vector<std::string>{"cable_material", "cables"}));
+  EXPECT_EQ(findElementKind("cable")->meshKeys(),
+            (std::vector<std::string>{"cable_material", "cables", "edge_cables"}));
   EXPECT_EQ(findElementKind("point_mass")->meshKeys(), std::vector<std::string>{"point_masses"});
   std::set<std::string> keys;
   for (const ElementKind* k : elementKinds())
@@ -215,6 +217,40 @@ TEST(ElementKinds, CablesOfAMeshFileAreNamedTheOtherCurvesStayNodeSets) {
   }
   EXPECT_NE(what.find("no line group (Physical Curve) 'rim'; it has: diagonal, edge"), std::string::npos)
       << what;
+}
+
+// edge_cables: a cable along each boundary edge of a generated membrane inside a node group, without a mesh
+// file: a 4 x 2 rectangle's side xmax (2 edges) and ymin (4 edges) get 6 cables sharing the membrane's nodes,
+// under line groups of the sets' names; a set without a boundary edge, or an unknown one, is refused at the
+// key.
+TEST(ElementKinds, EdgeCablesFollowAGeneratedMembranesEdges) {
+  auto yaml = [](const std::string& sets,
+                 const std::string& generator =
+                     "{type: rectangle, size: [2, 1], divisions: [4, 2], center: [1, 0.5, 0]}") {
+    return "materials:\n  film: {type: membrane, young: 1.0e8, poisson: 0.3, thickness: 1.0e-3, density: "
+           "1000}\n"
+           "  rope: {type: cable, young: 1.0e10, area: 1.0e-6, density: 1000}\n"
+           "meshes:\n  sheet:\n    generator: " +
+           generator + "\n    material: film\n    cable_material: rope\n    edge_cables: " + sets +
+           "\nconstraints:\n  - {nodes: sheet/all, fix: all}\ntime: {end: 1.0e-4}\n";
+  };
+  const Scene scene = loadSceneFromString(yaml("[xmax, ymin]"), "edges.yaml");
+  const Model& m = *scene.model;
+  ASSERT_EQ(m.cables.count, 6);
+  for (int e = 0; e < m.cables.count; ++e) {
+    const int a = m.cables.conn[2 * e], b = m.cables.conn[2 * e + 1];
+    const double dx = m.nodes.X[3 * a] - m.nodes.X[3 * b], dy = m.nodes.X[3 * a + 1] - m.nodes.X[3 * b + 1];
+    EXPECT_NEAR(std::hypot(dx, dy), 0.5, 1e-12) << "cable " << e << " is not one edge of the 0.5 m cells";
+    const bool onXmax = m.nodes.X[3 * a] == 2.0 && m.nodes.X[3 * b] == 2.0;
+    const bool onYmin = m.nodes.X[3 * a + 1] == 0.0 && m.nodes.X[3 * b + 1] == 0.0;
+    EXPECT_TRUE(onXmax || onYmin) << "cable " << e;
+  }
+  EXPECT_EQ(m.nodes.count, 15);  // the membrane's own nodes: the cables add none
+  const std::string disc = "{type: disc, radius: 0.5, rings: 4}";
+  EXPECT_EQ(loadSceneFromString(yaml("[rim]", disc), "disc.yaml").model->cables.count > 0, true);
+  EXPECT_NE(sceneError(yaml("[center]", disc), "disc.yaml").find("no edge on the boundary"),
+            std::string::npos);
+  EXPECT_NE(sceneError(yaml("[rim]"), "edges.yaml").find("no node group 'rim'"), std::string::npos);
 }
 
 // A kind other than membranes and cables builds its own block of the model (buildModel calls it with the

@@ -200,7 +200,8 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
         value = ot->second;
       } else {
         // `of: PROBE` compares with another probe of the earlier check and `factor: F` scales it: a mirror
-        // image (the left brake against the right: left tension vs right tension, yaw and roll with factor -1)
+        // image (the left brake against the right: left tension vs right tension, yaw and roll with factor
+        // -1)
         const std::string base = e.string("baseline");
         const std::string of = e.has("of") ? e.string("of") : probe;
         against = " vs " + base + (of != probe ? " " + of : "");
@@ -212,11 +213,13 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
                                base));
         const auto pt = bt->second.find(of);
         if (pt == bt->second.end())
-          e.failAt(e.has("of") ? "of" : "baseline", fmt::format("the check '{}' has no probe '{}'", base, of));
+          e.failAt(e.has("of") ? "of" : "baseline",
+                   fmt::format("the check '{}' has no probe '{}'", base, of));
         value = pt->second;
       }
       if (e.has("factor")) {
-        if (!e.has("baseline")) e.failAt("factor", "'factor' scales a 'baseline' (give 'value' scaled instead)");
+        if (!e.has("baseline"))
+          e.failAt("factor", "'factor' scales a 'baseline' (give 'value' scaled instead)");
         const double f = e.number("factor");
         value *= f;
         if (f != 1.0) against += fmt::format(" x {:g}", f);
@@ -293,6 +296,24 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
     throw fsi::InputError(fmt::format("--defect-correction {}: must be auto, on or off", defect));
   const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
   fmt::print("{}", r.summary());
+  // The pre-flight's options against a coupled run's defaults (fsiCoupling: projection consistent,
+  // quadratureLevel 1, gapCorrection no, keepSide no, defectCorrection off): say where they differ, so that
+  // its numbers are not taken for the run's (issue 39 makes the two one set).
+  std::vector<std::string> differ;
+  if (quadratureLevel != "1")
+    differ.push_back(fmt::format("--quadrature-level {} (the run: quadratureLevel 1)", quadratureLevel));
+  if (variant != "consistent" && variant != "auto")
+    differ.push_back(fmt::format("--variant {} (the run: projection consistent)", variant));
+  if (gapCorrection)
+    differ.emplace_back("gap correction on (the run: gapCorrection no; --no-gap-correction)");
+  if (keepSide) differ.emplace_back("keep-side on (the run: keepSide no; --no-keep-side)");
+  if (defect != "off")
+    differ.push_back(fmt::format("--defect-correction {} (the run: defectCorrection off)", defect));
+  if (!differ.empty())
+    fmt::print(
+        "note: these numbers are with {}; a coupled run with the adapter's defaults maps without them "
+        "(docs/COUPLING.md, \"Options of a coupled run\")\n",
+        fmt::join(differ, ", "));
   if (!jsonOut.empty()) {
     out << r.toJson().dump(2) << "\n";
     if (!out) throw fsi::InputError(fmt::format("{}: write failed", jsonOut.string()));

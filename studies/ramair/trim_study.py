@@ -120,6 +120,7 @@ def collect(name, out):
     if not (d / "summary.json").exists():
         row["trim_reached"] = False
         row["stopped"] = stop_reason(d) if d.exists() else "not run"
+        row.update(history_points(d, RUNS[name][1]))
         return row
     s = json.loads((d / "summary.json").read_text())
     c, w = s["coupled"], s["wing"]
@@ -142,6 +143,67 @@ def collect(name, out):
         "skin_folds": c.get("skin_folds"),
     })
     return row
+
+
+def history_points(d, settings):
+    """A run that stopped early: the interface force and the chord pitch where the thin wall cells began
+    (wall_after's time; the main job's mesh until then) and at its last window, from structure/coupling*.csv."""
+    import csv
+    import glob
+    rows = []
+    for f in sorted(glob.glob(str(d / "structure" / "coupling*.csv"))):
+        with open(f) as fh:
+            rows += list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    if not rows:
+        return {}
+    def point(r):
+        return {"time_s": float(r["time"]), "lift_N": float(r["Fz_fluid"]), "drag_N": float(r["Fx_fluid"]),
+                "chord_pitch_deg": float(r["chord_pitch_angle"])}
+    out = {"last_window": point(rows[-1])}
+    after = settings.get("wall_after", 0)
+    if after:
+        t = [float(r["time"]) for r in rows]
+        dt = t[1] - t[0]
+        before = [r for r, tt in zip(rows, t) if tt <= after * dt + 1e-9]
+        if before:
+            out["at_wall_after"] = point(before[-1])
+    return out
+
+
+# The runs of the near-wall study's figure: the main job's mesh, and the thin wall cells from step 400 on
+WALL_RUNS = (("s1", "main job's mesh (y+ ~450), rigging 13"), ("s1-f3", "prism layers from step 400, rigging 13"),
+             ("rig17-f3", "prism layers from step 400, rigging 17"), ("rig09-f3", "prism layers from step 400, rigging 9"))
+
+
+def plot_wall_swing(out, png):
+    """ramair_wall_swing.png: lift, drag and the chord pitch over the flow time of the main job's mesh against
+    the runs that go on with prism layers at the wall from step 400 (WALL_RUNS that exist)."""
+    import csv
+    import glob
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 3, figsize=(14, 4))
+    for k, (name, label) in enumerate(WALL_RUNS):
+        files = sorted(glob.glob(str(out / name / "structure" / "coupling*.csv")))
+        rows = []
+        for f in files:
+            with open(f) as fh:
+                rows += list(csv.DictReader(line for line in fh if not line.startswith("#")))
+        if not rows:
+            continue
+        t = [float(r["time"]) for r in rows]
+        for j, key in enumerate(("Fz_fluid", "Fx_fluid", "chord_pitch_angle")):
+            ax[j].plot(t, [float(r[key]) for r in rows], color=f"C{k}", lw=1.2, label=label)
+    for j, lab in enumerate(("lift [N]", "drag [N]", "chord pitch [deg] (LE -> TE, nose up +)")):
+        ax[j].axvline(400 * 0.00833697, color="grey", ls=":", lw=1)
+        ax[j].set(xlabel="flow time t [s] (dotted: the new mesh, step 400)", ylabel=lab)
+        ax[j].grid(alpha=0.3)
+    ax[0].legend(fontsize=8)
+    fig.suptitle("The coupled canopy when its wall cells become thin at its trim: it does not hold the trim", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
 
 
 def richardson(h, f):
@@ -396,7 +458,11 @@ def main():
         plot_convergence(cdoc, out / "ramair_convergence.png")
     if polar:
         plot_polar(polar, out / "ramair_polar.png", rigid_polar())
+    if any((out / n).exists() for n, _ in WALL_RUNS[1:]):
+        plot_wall_swing(out, out / "ramair_wall_swing.png")
     if a.docs:
+        if (out / "ramair_wall_swing.png").exists():
+            shutil.copy(out / "ramair_wall_swing.png", ROOT / "docs/img/ramair_wall_swing.png")
         for n in ("ramair_convergence", "ramair_polar"):
             if (out / f"{n}.png").exists():
                 shutil.copy(out / f"{n}.json", ROOT / f"docs/data/{n}.json")

@@ -26,9 +26,15 @@ print(m.group(1) if m else "")')
 [ -n "$patches" ] || fail "no fsiCoupling patches in system/controlDict"
 for patch in $patches; do
   echo "== fsi map-check structure.yaml .:$patch"
-  "$fsi" map-check structure.yaml ".:$patch" --json "map-check-$patch.json"
-  rc=$?
+  "$fsi" map-check structure.yaml ".:$patch" --json "map-check-$patch.json" | tee "map-check-$patch.log"
+  rc=${PIPESTATUS[0]}
   [ $rc -eq 0 ] || fail "map-check on patch $patch exited with $rc"
+  # its defaults are not a coupled run's: it says where (gap correction, keep-side, quadrature, defect)
+  grep -q "note: these numbers are with .*gap correction on (the run: gapCorrection no" "map-check-$patch.log" ||
+    fail "map-check does not say where its defaults differ from the coupled run's"
+  "$fsi" map-check structure.yaml ".:$patch" --no-gap-correction --no-keep-side --quadrature-level 1 \
+    --defect-correction off > "map-check-$patch-run.log" || fail "map-check with the run's defaults failed"
+  ! grep -q "^note: these numbers" "map-check-$patch-run.log" || fail "map-check with the run's defaults still notes a difference"
   /usr/bin/python3 - "map-check-$patch.json" <<'PY' || fail "map-check on patch $patch: errors too large"
 import json, sys
 r = json.load(open(sys.argv[1]))

@@ -101,6 +101,13 @@ void CableKind::addFields(const Model& model, const double* x, const std::set<st
 
 namespace {
 
+// "a, b, c" of a group map's names, or "none"
+std::string groupList(const std::map<std::string, std::vector<int>>& groups) {
+  std::string names;
+  for (const auto& [name, members] : groups) names += (names.empty() ? "" : ", ") + name;
+  return names.empty() ? "none" : names;
+}
+
 // Keeps the lines of the named groups (all of them for "all") as the mesh's cables; every other line group
 // becomes a node group of its nodes (a Physical Curve named for a constraint or a probe, not a cable).
 void keepCableGroups(MeshData& mesh, const std::vector<std::string>& names, const YamlMap& entry) {
@@ -110,10 +117,8 @@ void keepCableGroups(MeshData& mesh, const std::vector<std::string>& names, cons
     for (const std::string& n : names) {
       const auto it = mesh.lineGroups.find(n);
       if (it == mesh.lineGroups.end()) {
-        std::string known;
-        for (const auto& [g, lines] : mesh.lineGroups) known += (known.empty() ? "" : ", ") + g;
         entry.failAt("cables", fmt::format("the mesh has no line group (Physical Curve) '{}'; it has: {}", n,
-                                           known.empty() ? "none" : known));
+                                           groupList(mesh.lineGroups)));
       }
       for (const int e : it->second) keep[std::size_t(e)] = 1;
     }
@@ -162,10 +167,8 @@ void addEdgeCables(MeshData& mesh, const std::vector<std::string>& names, const 
   for (const std::string& name : names) {
     const auto it = mesh.nodeGroups.find(name);
     if (it == mesh.nodeGroups.end()) {
-      std::string known;
-      for (const auto& [g, nodes] : mesh.nodeGroups) known += (known.empty() ? "" : ", ") + g;
       entry.failAt("edge_cables", fmt::format("the mesh has no node group '{}'; it has: {}", name,
-                                              known.empty() ? "none" : known));
+                                              groupList(mesh.nodeGroups)));
     }
     const std::set<int> nodes(it->second.begin(), it->second.end());
     std::vector<int>& group = mesh.lineGroups[name];
@@ -198,12 +201,10 @@ void CableKind::readMeshKeys(const YamlMap& entry, const MaterialTable& material
     keepCableGroups(in.mesh, names, entry);
   } else if (entry.has("file") && !in.mesh.lines.empty()) {
     if (in.cableMaterial >= 0) {
-      std::string known;
-      for (const auto& [g, lines] : in.mesh.lineGroups) known += (known.empty() ? "" : ", ") + g;
       entry.fail(fmt::format(
           "this mesh file has line elements (Physical Curves: {}) and a cable_material: say which are cables "
           "with 'cables: [NAMES]' or 'cables: all' (the others stay node sets for constraints and probes)",
-          known.empty() ? "unnamed" : known));
+          groupList(in.mesh.lineGroups)));
     }
     keepCableGroups(in.mesh, {}, entry);  // no cable material: every curve is a node set
   }

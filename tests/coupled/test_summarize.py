@@ -14,6 +14,17 @@ import summarize  # noqa: E402
 HEADER = "time,iterations,converged,residual,Fx_fluid,Fy_fluid,Fz_fluid,Fx_structure,Fy_structure,Fz_structure,mid_z\n"
 
 
+def quiet_summary(summarize, d):
+    """summarize.main() on case d (1 s of wall time), its printed summary silenced; its exit code"""
+    with open(os.devnull, "w") as null:
+        saved, sys.stdout = sys.stdout, null
+        sys.argv[1:] = [d, "1"]
+        try:
+            return summarize.main()
+        finally:
+            sys.stdout = saved
+
+
 def row(t, iterations, z, converged=1):
     # fluid and structure forces equal except in window t = 0.3 of the first part (replaced later)
     fz_s = 2.0 if t == 0.3 and z < 0 else 1.0
@@ -110,11 +121,7 @@ def main():
         with open(os.path.join(d, "reference.yaml"), "w") as f:
             f.write("probe: mid_z\nquantities:\n  settled: {measure: mean, from: 0.6, to: 1.0, tolerance: 0.1, "
                     "check: true, published: [{source: test, value: 2.0}]}\n")
-        with open(os.devnull, "w") as null:
-            saved, sys.stdout = sys.stdout, null
-            sys.argv[1:] = [d, "1"]
-            summarize.main()
-            sys.stdout = saved
+        quiet_summary(summarize, d)
         got = json.load(open(os.path.join(d, "summary.json")))["all_checks_within_tolerance"]
         good = got == expect
         print(f"run to {end} s, settled value {value}: checks pass {got} (expected {expect}): {'ok' if good else 'WRONG'}")
@@ -128,11 +135,7 @@ def main():
         f.write("probe: mid_z\nquantities:\n  settled: {measure: final, tolerance: 0.1, check: true, "
                 "published: [{source: test, value: 2.0}]}\n  later: {measure: final, tolerance: 0.1, "
                 "published: [{source: a longer run, value: 5.0}]}\n")
-    with open(os.devnull, "w") as null:
-        saved, sys.stdout = sys.stdout, null
-        sys.argv[1:] = [d, "1"]
-        summarize.main()
-        sys.stdout = saved
+    quiet_summary(summarize, d)
     got = json.load(open(os.path.join(d, "summary.json")))
     good = (got["all_checks_within_tolerance"] is True and got["reported_outside_range"] == ["later"]
             and "all_within_tolerance" not in got)
@@ -143,11 +146,7 @@ def main():
     d = case(work, "own", [("coupling.csv", HEADER + "".join(row(0.1 * k, 2, 0.1 * k) for k in range(1, 11)))])
     with open(os.path.join(d, "structure", "timing.json"), "w") as f:
         json.dump({}, f)
-    with open(os.devnull, "w") as null:
-        saved, sys.stdout = sys.stdout, null
-        sys.argv[1:] = [d, "1"]
-        rc = summarize.main()
-        sys.stdout = saved
+    rc = quiet_summary(summarize, d)
     got = json.load(open(os.path.join(d, "summary.json")))
     p = got.get("probes", {}).get("mid_z", {})
     good = (rc == 0 and got["reference"] is None and abs(p.get("final", 0) - 1.0) < 1e-12

@@ -180,6 +180,26 @@ TEST(FabricBending, UniformCurvatureIsExactOnAnyTriangulation) {
 
 namespace {
 
+// The stiffness of the z displacements of `freeNodes` at the state X: central differences of the internal
+// forces (the linear stiffness at the flat state for a flat strip).
+Eigen::MatrixXd transverseStiffness(const FabricBending& fb, const std::vector<double>& X,
+                                    const std::vector<int>& freeNodes) {
+  const int n = int(freeNodes.size());
+  Eigen::MatrixXd K(n, n);
+  const double h = 1e-7;
+  for (int c = 0; c < n; ++c) {
+    std::vector<double> p = X, m = X;
+    p[3 * std::size_t(freeNodes[std::size_t(c)]) + 2] += h;
+    m[3 * std::size_t(freeNodes[std::size_t(c)]) + 2] -= h;
+    const std::vector<double> fp = internalForces(fb, p), fm = internalForces(fb, m);
+    for (int r = 0; r < n; ++r) {
+      const std::size_t d = 3 * std::size_t(freeNodes[std::size_t(r)]) + 2;
+      K(r, c) = (fp[d] - fm[d]) / (2 * h);
+    }
+  }
+  return K;
+}
+
 // Mid-span deflection of a strip simply supported along x = 0 and x = L (those rows of nodes held in z, free
 // to turn) under a uniform transverse load q [N/m²], only z free: K δz = F by the linear stiffness at the
 // flat state (central differences of the forces), F = q × each node's share of the area.
@@ -190,18 +210,7 @@ double simplySupportedMid(double L, double b, int nx, int ny, double D, double q
   for (int i = 1; i < nx; ++i)
     for (int j = 0; j <= ny; ++j) freeNodes.push_back(s.node(i, j));
   const int n = int(freeNodes.size());
-  Eigen::MatrixXd K(n, n);
-  const double h = 1e-7;
-  for (int c = 0; c < n; ++c) {
-    std::vector<double> p = s.X, m = s.X;
-    p[3 * std::size_t(freeNodes[std::size_t(c)]) + 2] += h;
-    m[3 * std::size_t(freeNodes[std::size_t(c)]) + 2] -= h;
-    const std::vector<double> fp = internalForces(fb, p), fm = internalForces(fb, m);
-    for (int r = 0; r < n; ++r) {
-      const std::size_t d = 3 * std::size_t(freeNodes[std::size_t(r)]) + 2;
-      K(r, c) = (fp[d] - fm[d]) / (2 * h);
-    }
-  }
+  const Eigen::MatrixXd K = transverseStiffness(fb, s.X, freeNodes);
   Eigen::VectorXd F(n);
   const double cell = (L / nx) * (b / ny);
   for (int r = 0; r < n; ++r) {
@@ -244,18 +253,7 @@ double cantileverTip(double L, double b, int nx, int ny, double D, double P, int
   for (int i = held; i <= nx; ++i)
     for (int j = 0; j <= ny; ++j) freeNodes.push_back(s.node(i, j));
   const int n = int(freeNodes.size());
-  Eigen::MatrixXd K(n, n);
-  const double h = 1e-7;
-  for (int c = 0; c < n; ++c) {
-    std::vector<double> p = s.X, m = s.X;
-    p[3 * std::size_t(freeNodes[std::size_t(c)]) + 2] += h;
-    m[3 * std::size_t(freeNodes[std::size_t(c)]) + 2] -= h;
-    const std::vector<double> fp = internalForces(fb, p), fm = internalForces(fb, m);
-    for (int r = 0; r < n; ++r)
-      K(r, c) = (fp[3 * std::size_t(freeNodes[std::size_t(r)]) + 2] -
-                 fm[3 * std::size_t(freeNodes[std::size_t(r)]) + 2]) /
-                (2 * h);
-  }
+  const Eigen::MatrixXd K = transverseStiffness(fb, s.X, freeNodes);
   Eigen::VectorXd F = Eigen::VectorXd::Zero(n);
   for (int j = 0; j <= ny; ++j) F[(nx - held) * (ny + 1) + j] = P / ny * ((j == 0 || j == ny) ? 0.5 : 1.0);
   // a mechanism: an eigenvalue of K at round-off level of the largest (the finite differences' noise)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The pilot's brakes on the coupled ram-air wing (cases/coupled/ramair-kt, brake.settings: docs/RAMAIR.md) cut
 # to CI size, 2 ranks, driven by a brake table (brake_table): 20 rigid steps, 30 coupled windows of inflation,
-# the right toggle drawn 0.25 m down over 20 windows and held 10, then the left one drawn down as far over 20
+# the right toggle drawn 0.15 m down over 20 windows and held 10, then the left one drawn down as far over 20
 # windows and both held 20 (a symmetric brake); remeshing on, as in brake.settings. Checks:
 #   run          all 100 windows, each once; force fluid = structure (< 1e-6) in every window; at least one new
 #                mesh during the pull (the moved design mesh cannot follow the trailing edge drawn down: without
@@ -21,7 +21,7 @@ src=$1 build=$2 work=$3
 . "$(dirname "$0")/ramair_test_case.sh"
 
 # windows of 8.337 ms: the right pull in windows 30-50, held to 60, the left pull 60-80, both held to 100
-printf '%s\n' "time,left,right" "0,0,0" "0.2501,0,0" "0.41685,0,0.25" "0.5002,0,0.25" "0.66696,0.25,0.25" > brakes.csv
+printf '%s\n' "time,left,right" "0,0,0" "0.2501,0,0" "0.41685,0,0.15" "0.5002,0,0.15" "0.66696,0.15,0.15" > brakes.csv
 sed -e 's/^steps .*/steps 100/' -e 's/^rigid_steps .*/rigid_steps 20/' -e 's/^carry_after .*/carry_after 20/' \
   -e '/^brake_right /d' -e '/^brake_start /d' -e '/^brake_duration /d' \
   -e 's/^write_interval .*/write_interval 5/' brake.settings > short.settings

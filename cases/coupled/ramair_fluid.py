@@ -899,7 +899,7 @@ solvers
         else:
             timing = (f"application pimpleFoam;\n// deltaT = courant {s['courant']:g} * finest wing cell "
                       f"{d['h_wing']:.6g} m / speed {s['speed']:g} m/s; {steps} steps\n"
-                      f"startFrom latestTime; startTime 0; stopAt endTime; endTime {end:.9g}; deltaT {d['deltaT']:.9g};")
+                      f"startFrom latestTime; startTime 0; stopAt endTime; endTime {end:.12g}; deltaT {d['deltaT']:.12g};")
         return f"""\
 {timing}
 writeControl timeStep; writeInterval {every}; purgeWrite 0; writeFormat ascii; writePrecision 10;

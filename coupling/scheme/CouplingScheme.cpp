@@ -78,8 +78,10 @@ void CouplingScheme::restoreLoadsAtWindowStart(const Eigen::VectorXd& loads) {
 }
 
 bool CouplingScheme::isCouplingOngoing() const {
-  // Relative slack so that accumulated round-off in t does not add a window.
-  return initialized_ && t_ < config_.endTime - 1e-9 * config_.timeWindowSize;
+  // Within half a window of the end is the end, as for OpenFOAM's own time loop (it stops once t passes
+  // endTime - deltaT/2): round-off in t, or an end time and a step changed part way through that no longer
+  // add up to the digit, must not leave the coupling one window short of the fluid's end.
+  return initialized_ && t_ < config_.endTime - 0.5 * config_.timeWindowSize;
 }
 
 bool CouplingScheme::requiresWritingCheckpoint() const {

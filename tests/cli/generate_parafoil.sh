@@ -26,8 +26,11 @@ renames=$(sed -n '/\$PhysicalNames/{n;p;q}' regmsh.msh)
 # Our own reader: the written file as a scene's mesh gives the same nodes and elements, the same outer surface
 # (its set 'skin' selects the same triangles), and every set the generator made (the reader adds node sets
 # for the element sets, so their number grows).
+# (a mesh file's cables are named: the generator's lines are all cables)
 sed -e "s|generator: {type: parafoil.*|file: $WORK/gen/wing.msh|" -e '/chordwise_points: 20/d' \
+    -e 's/^    cable_material: line$/    cable_material: line\n    cables: all/' \
     "$SRC/parafoil-small.yaml" > reread.yaml
+grep -q "^    cables: all" reread.yaml || fail "could not name the re-read scene's cables"
 grep -q "file: $WORK/gen/wing.msh" reread.yaml || fail "could not build the re-read scene"
 "$FSI" generate reread.yaml --out again > again.log 2>&1 || { cat again.log; fail "re-reading wing.msh failed"; }
 recounts=$(grep 'wing.msh' again.log | sed 's/^[^ ]*  //; s/, [0-9]* sets//')

@@ -7,7 +7,7 @@ the rear rows lengthened (D by 3 cm, A kept), must pitch the inflated canopy of
 cases/structure/parafoil-kt-inflation nose-down by about 0.03 / 0.7 rad = 2.46 deg. The estimate leaves out
 that the lines converge (2.1 m below a 1 m chord), that the canopy is a membrane on elastic lines and that the
 load's direction turns with the canopy, so the check is its sign and size: between half and 1.5 times it
-(measured: 85 % and 73 %; a 20 % band, tried first, failed the rear rows: an independent reference with the lines'
+(measured: 85 % and 73 %; a 20 % band, tried first, failed the rear rows: an independent reference with the lines
 converging to the confluence point is still to be built). And one row alone is no rotation: lengthening D by 3 cm only slackens it while C
 holds the rear, so its pitch change must stay below a quarter of the proportional trims' (measured: 12 %).
 Usage: parafoil_row_trim.py FSI WORK"""

@@ -128,7 +128,7 @@ def run_point(out, variant, level, alpha, iterations, env, solver="simple", cour
     (case / "polar.settings").write_text(
         SETTINGS + f"resolution {level}\nangle {alpha - INCIDENCE:g}   # alpha {alpha:g} deg at the centre chord\n"
         f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n"
-        f"wall_split {2 if wall == 'split' else 0}\n" + run)
+        f"wall_split {2 if wall == 'split' else 0}\n" + (f"wall_layers 3\n" if wall == "layers3" else "") + run)
     t0 = time.time()
     # The environment of the build (--env); the arguments are a list, nothing here passes through a shell but
     # the fixed `source` line (the file's path is its $0).
@@ -228,20 +228,21 @@ def plot(path, png):
     colours = {"flat": "C0", "arc": "C1", "bulged": "C3", "bulged16": "C4"}
     for v in VARIANTS:
         for lvl, solver, wall in [(lv, so, wa) for lv in styles for so in ("simple", "pimple")
-                                  for wa in ("functions", "layers", "split")]:
+                                  for wa in ("functions", "layers", "split", "layers3")]:
             sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl
                           and p.get("solver", "simple") == solver and p.get("wall", "functions") == wall],
                          key=lambda p: p["alpha_deg"])
             if not sel:
                 continue
             lab = (f"{v}, {lvl}" + (", time-averaged" if solver == "pimple" else "")
-                   + (", prism layers" if wall == "layers" else ", wall cells split twice" if wall == "split" else ""))
+                   + {"layers": ", prism layers", "split": ", wall cells split twice",
+                      "layers3": ", 3 layers on the wall cell"}.get(wall, ""))
             a = [p["alpha_deg"] for p in sel]
             # error bars: the range over the last fifth of the iterations where the steady solver did not settle
             lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
             hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
-            col = "C2" if wall == "layers" else colours[v]
-            fmt = "D-." if wall == "split" else styles[lvl]
+            col = {"layers": "C2", "layers3": "C4"}.get(wall, colours[v])
+            fmt = {"split": "D-.", "layers3": "s:"}.get(wall, styles[lvl])
             ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=fmt, color=col, label=lab,
                            capsize=3, mfc="none" if lvl != "coarse" else None)
             ax[1].plot([p["CD"] for p in sel], [p["CL"] for p in sel], fmt, color=col, label=lab)
@@ -276,7 +277,7 @@ def table(path, linear_max=8.0):
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for v in VARIANTS:
         for lvl in ("coarse", "medium", "fine"):
-            for solver, wall in [(so, wa) for so in ("simple", "pimple") for wa in ("functions", "layers", "split")]:
+            for solver, wall in [(so, wa) for so in ("simple", "pimple") for wa in ("functions", "layers", "split", "layers3")]:
                 sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl
                               and p.get("solver", "simple") == solver and p.get("wall", "functions") == wall],
                              key=lambda p: p["alpha_deg"])
@@ -307,9 +308,10 @@ def main():
     ap.add_argument("--solver", choices=("simple", "pimple"), default="simple",
                     help="simple: steady simpleFoam; pimple: time-accurate pimpleFoam, the mean over the second half "
                          "(for flow a steady solver cannot settle)")
-    ap.add_argument("--wall", choices=("functions", "layers", "split"), default="functions",
+    ap.add_argument("--wall", choices=("functions", "layers", "split", "layers3"), default="functions",
                     help="functions: the 3D case's mesh, no prism layers; layers: prism_layers yes (y+ ~ 50); "
-                         "split: wall_split 2 (the wall cells split twice, y+ ~ 100)")
+                         "split: wall_split 2 (the wall cells split twice, y+ ~ 100); "
+                         "layers3: wall_layers 3 (3 layers sized on the wall cell, the coupled run's s1-f3 mesh)")
     ap.add_argument("--courant", type=float, default=2.0, help="pimple: Courant number on the finest wing cell")
     ap.add_argument("--flow-time", type=float, default=2.0, help="pimple: seconds of flow (30 chord passages at 15 m/s)")
     ap.add_argument("--out", default=str(ROOT / "studies-out/wing"))

@@ -22,8 +22,10 @@
 #include "fsiFloatingPointTraps.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
 #include "fsiRankWait.H"
+#include "fsiStopRequest.H"
 #include "fvcGrad.H"
 #include "movingWallVelocityFvPatchVectorField.H"
+#include "structure/model/Error.hpp"
 #include "structure/run/Simulation.hpp"
 #include "surfaceFields.H"
 #include "turbulenceModel.H"
@@ -241,9 +243,9 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         restartArrays = structure_->readState(std::string(state));
         // The time directory's name is rounded to timePrecision digits; the state file keeps the exact time.
         if (std::abs(structure_->time() - time_.value()) > 1e-3 * dt)
-          FatalErrorInFunction << "fsiCoupling: structure state " << state
-                               << " is at t = " << structure_->time() << " s, the fluid at " << time_.value()
-                               << " s" << exit(FatalError);
+          FatalIOErrorInFunction(dict)
+              << "fsiCoupling: structure state " << state << " is at t = " << structure_->time()
+              << " s, the fluid at " << time_.value() << " s" << exit(FatalIOError);
         structure_->alignTime(time_.value());
         Info << "[fsi] structure restarted from " << time_.timeName() << "/uniform/" << state.name() << endl;
         // interfaceReference restart: a mesh that starts undeformed was made around the canopy of this state;
@@ -260,9 +262,10 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
         }
         if (!interfaceReference_.empty()) {
           if (interfaceReference_.size() != 3 * std::size_t(structure_->numInterfaceNodes()))
-            FatalErrorInFunction << "fsiCoupling: structure state " << state << ": interface_reference has "
-                                 << label(interfaceReference_.size()) << " values for "
-                                 << structure_->numInterfaceNodes() << " interface nodes" << exit(FatalError);
+            FatalIOErrorInFunction(dict)
+                << "fsiCoupling: structure state " << state << ": interface_reference has "
+                << label(interfaceReference_.size()) << " values for " << structure_->numInterfaceNodes()
+                << " interface nodes" << exit(FatalIOError);
           Info << "[fsi] the fluid mesh is undeformed at the canopy's state of t = "
                << (newMesh ? time_.timeName() : word("an earlier restart"))
                << " (interfaceReference restart): the projection is set up on that shape" << endl;
@@ -272,10 +275,12 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
                                      << state << ", and there is none (a run from t = 0 uses design)"
                                      << exit(FatalIOError);
       } else if (!fresh) {
-        FatalErrorInFunction
+        // A FatalIOError: while OpenFOAM loads function objects it turns a plain FatalError into a warning
+        // and runs on without the coupling.
+        FatalIOErrorInFunction(dict)
             << "fsiCoupling: the run starts at t = " << time_.value() << " s but there is no structure state "
             << state << " (a restart needs the state written with that time directory; a new run starts "
-            << "at t = 0)" << exit(FatalError);
+            << "at t = 0)" << exit(FatalIOError);
       }
 
       // Projection structure -> each fluid patch, on the reference geometry: the structure's design shape, or
@@ -415,19 +420,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
       scheme_->initialize(time_.value(),
                           Eigen::Map<const Eigen::VectorXd>(d0.data(), Eigen::Index(d0.size())),
                           Eigen::Map<const Eigen::VectorXd>(loads.data(), Eigen::Index(loads.size())));
-      std::vector<Eigen::VectorXd> history;
-      for (int k = 0; k < 3; ++k) {
-        const auto it = restartArrays.find("interface_history_" + std::to_string(k));
-        if (it != restartArrays.end())
-          history.emplace_back(
-              Eigen::Map<const Eigen::VectorXd>(it->second.data(), Eigen::Index(it->second.size())));
-      }
-      scheme_->restoreHistory(history);
-      // The load the structure got last: with loadRelaxation < 1 the next one is relaxed towards it.
-      const auto applied = restartArrays.find("applied_loads");
-      if (applied != restartArrays.end())
-        scheme_->restoreLoadsAtWindowStart(
-            Eigen::Map<const Eigen::VectorXd>(applied->second.data(), Eigen::Index(applied->second.size())));
+      if (!restartArrays.empty() || isFile(stateFile(time_.timePath())))
+        restoreSchemeState(restartArrays, stateFile(time_.timePath()));
     } catch (const std::exception& e) {
       FatalIOErrorInFunction(dict) << "fsiCoupling: " << e.what() << exit(FatalIOError);
     }
@@ -444,6 +438,8 @@ void fsiCoupling::startCoupling(const dictionary& dict) {
   // The transfer's parts count the windows only, like tTransfer_.
   tSetup_ = seconds(wallStart_, Clock::now());
   tGather_ = tLoadProjection_ = tDisplacementProjection_ = tScatter_ = 0;
+  started_ = true;
+  fsiStopRequest::install();
 }
 
 scalar fsiCoupling::namedTime(scalar t) const {
@@ -618,6 +614,85 @@ void fsiCoupling::requestRemesh() {
   }
 }
 
+void fsiCoupling::restoreSchemeState(const std::map<std::string, std::vector<double>>& arrays,
+                                     const fileName& file) {
+  // Values are finite (StructureParticipant::readState checks every array); here: presence and sizes. Thrown
+  // as InputError: the set-up's handler stops the run with it (a FatalIOError, which OpenFOAM does not turn
+  // into a warning while it loads function objects).
+  const std::string where = "structure state " + std::string(file) + ": the dataset /arrays/";
+  const std::size_t n = 3 * std::size_t(structure_->numInterfaceNodes());
+  auto array = [&](const std::string& name, std::size_t size) -> const std::vector<double>& {
+    const auto it = arrays.find(name);
+    if (it == arrays.end())
+      throw fsi::InputError(
+          where + name +
+          " is missing (a restart state holds it; the file is damaged or was not written by "
+          "a coupled run)");
+    if (size > 0 && it->second.size() != size)
+      throw fsi::InputError(where + name + " has " + std::to_string(it->second.size()) +
+                            " values, expected " + std::to_string(size) + " (3 per interface node)");
+    return it->second;
+  };
+  const std::vector<double>& count = array("interface_history_count", 1);
+  if (!(count[0] >= 1 && count[0] <= 3 && count[0] == std::floor(count[0])))
+    throw fsi::InputError(where + "interface_history_count is " + std::to_string(count[0]) +
+                          ", expected 1, 2 or 3");
+  std::vector<Eigen::VectorXd> history;
+  for (int k = 0; k < int(count[0]); ++k) {
+    const std::vector<double>& h = array("interface_history_" + std::to_string(k), n);
+    history.emplace_back(Eigen::Map<const Eigen::VectorXd>(h.data(), Eigen::Index(h.size())));
+  }
+  scheme_->restoreHistory(history);
+  // The load the structure got last: with loadRelaxation < 1 the next one is relaxed towards it.
+  const std::vector<double>& applied = array("applied_loads", n);
+  scheme_->restoreLoadsAtWindowStart(
+      Eigen::Map<const Eigen::VectorXd>(applied.data(), Eigen::Index(applied.size())));
+  // The acceleration's carried state (IQN-ILS' reused columns, Aitken's factor): the restarted run iterates
+  // like the uninterrupted one. A state written by a staggered run (or one whose acceleration carries
+  // nothing) has none: the acceleration starts afresh, as at t = 0.
+  fsi::coupling::Acceleration::State acc;
+  const std::string prefix = "acceleration_";
+  for (const auto& [key, values] : arrays)
+    if (key.compare(0, prefix.size(), prefix) == 0) acc[key.substr(prefix.size())] = values;
+  if (!implicit_) return;
+  if (acc.empty()) {
+    if (!scheme_->accelerationState().empty())
+      Info << "[fsi] the state " << file << " carries no acceleration history (written by a staggered run or "
+           << "another acceleration): the acceleration starts afresh" << endl;
+    return;
+  }
+  try {
+    scheme_->restoreAccelerationState(acc);
+  } catch (const std::exception& e) {
+    throw fsi::InputError(where + "acceleration_*: " + e.what() +
+                          " (written by another acceleration? `acceleration` must be the one the state was "
+                          "written with)");
+  }
+}
+
+void fsiCoupling::requestStop(int signal) {
+  stopped_ = true;
+  const_cast<Time&>(time_).writeAndEnd();
+  writeStructure();
+  if (!Pstream::master()) return;
+  const fileName dir = time_.globalPath() / "structure";
+  mkDir(dir);
+  OFstream note(dir / "interrupted");
+  note << "signal " << fsiStopRequest::name(signal).c_str() << nl << "time " << time_.timeName() << nl
+       << "window " << label(std::lround(time_.value() / time_.deltaTValue())) << nl;
+  Info << "[fsi] stopped on " << fsiStopRequest::name(signal).c_str() << " at t = " << time_.timeName()
+       << " s: the fluid's fields and the structure's state are written there; the case's Allrun with "
+       << "-continue (or startFrom latestTime) goes on from it" << endl;
+}
+
+void fsiCoupling::movePoints(const polyMesh& mesh) {
+  // Every motion of the coupled mesh, on every rank at once; not the checkpoint's move back to a mesh
+  // already checked. The fvMesh's own geometry is being rebuilt while this runs: the guard reads only the
+  // primitive mesh's (recomputed from the new points, and then kept by the fvMesh).
+  if (!started_ || restoring_ || ended_ || &mesh != &static_cast<const polyMesh&>(mesh_)) return;
+  checkMesh();
+}
+
 fileName fsiCoupling::stateFile(const fileName& timePath) const {
   return timePath / "uniform" / "fsiStructure.h5";
 }
@@ -636,6 +711,8 @@ void fsiCoupling::writeStructure() {
   for (std::size_t k = 0; k < h.size(); ++k)
     arrays["interface_history_" + std::to_string(k)] =
         std::vector<double>(h[k].data(), h[k].data() + h[k].size());
+  arrays["interface_history_count"] = {double(h.size())};
+  for (const auto& [key, values] : scheme_->accelerationState()) arrays["acceleration_" + key] = values;
   const Eigen::VectorXd& applied = scheme_->loadsAtWindowStart();
   arrays["applied_loads"] = std::vector<double>(applied.data(), applied.data() + applied.size());
   if (!interfaceReference_.empty()) arrays["interface_reference"] = interfaceReference_;
@@ -792,7 +869,9 @@ bool fsiCoupling::execute() {
       firstPass_.phi = phi.primitiveField();
       firstPass_.V = mesh_.V().field();
       firstPass_.x = mesh_.points();
+      restoring_ = true;
       checkpoint_->restore();
+      restoring_ = false;
       repeating_ = true;
       return true;
     }
@@ -805,8 +884,7 @@ bool fsiCoupling::execute() {
          << gMax(mag(mesh_.points() - firstPass_.x)) << endl;
   }
 
-  // Before the structure takes a load computed on a crushed mesh (its time is reported on its own).
-  checkMesh();
+  // The mesh guard checked this window's mesh when it moved (movePoints), before the fluid solved on it.
   checkRemeshAt();
   const auto t0 = Clock::now();
   vector fluidTotal;
@@ -843,8 +921,12 @@ bool fsiCoupling::execute() {
   const auto t2 = Clock::now();
   if (!strayTimeDir_.empty() && isDir(strayTimeDir_)) rmDir(strayTimeDir_);
   strayTimeDir_.clear();
+  // A stop request (Ctrl-C, SIGTERM, the stop file) ends the run after an accepted window (collective).
+  const int stopSignal = repeat || finished ? 0 : fsiStopRequest::pending(time_.globalPath() / "fsi.stop");
   if (repeat) {
+    restoring_ = true;
     checkpoint_->restore();
+    restoring_ = false;
     if (!isDir(time_.timePath())) strayTimeDir_ = time_.timePath();
   } else {
     try {
@@ -854,6 +936,8 @@ bool fsiCoupling::execute() {
       // so a continued run can start from it.
       if (remeshRequested_ && !finished) {
         requestRemesh();
+      } else if (stopSignal != 0) {
+        requestStop(stopSignal);
       } else {
         if (finished && !time_.writeTime()) const_cast<Time&>(time_).writeNow();
         if (time_.writeTime() || finished) writeStructure();
@@ -877,7 +961,7 @@ bool fsiCoupling::execute() {
     const_cast<Time&>(time_).setEndTime(time_.value());
     end();
   }
-  if (remeshRequested_) end();  // writeAndEnd() has ended the time loop
+  if (remeshRequested_ || stopped_) end();  // writeAndEnd() has ended the time loop
   return true;
 }
 

@@ -48,7 +48,9 @@ fsiMeshGuard::fsiMeshGuard(const fvMesh& mesh, const labelList& interfacePatches
 fsiMeshGuard::Report fsiMeshGuard::check() {
   const auto start = std::chrono::steady_clock::now();
   Report r;
-  const scalarField& V = mesh_.V().field();
+  // The primitive mesh's geometry only: check() runs while the fvMesh rebuilds its own after a motion
+  // (fsiCoupling::movePoints), when V(), C() and Cf() still refer to the old points' arrays.
+  const scalarField& V = mesh_.cellVolumes();
   // Smallest volume ratio and the cells that fail.
   scalar localMin = GREAT;
   label worst = -1;
@@ -107,7 +109,7 @@ fsiMeshGuard::Report fsiMeshGuard::check() {
     // Where: the worst cell, then the interface face nearest to it (over all ranks).
     const bool mine = Pstream::myProcNo() == r.rank && worst >= 0;
     r.cell = fromRank(r.rank, mine ? worst : label(0));
-    r.centre = fromRank(r.rank, mine ? mesh_.C()[worst] : point(Zero));
+    r.centre = fromRank(r.rank, mine ? mesh_.cellCentres()[worst] : point(Zero));
     r.volume = fromRank(r.rank, mine ? V[worst] : 0.0);
     r.volume0 = fromRank(r.rank, mine ? V0_[worst] : 0.0);
   }
@@ -115,7 +117,7 @@ fsiMeshGuard::Report fsiMeshGuard::check() {
     scalar nearest = GREAT;
     label patchIndex = -1, face = -1;
     forAll(patches_, i) {
-      const vectorField& Cf = mesh_.boundary()[patches_[i]].Cf();
+      const vectorField::subField Cf = mesh_.boundaryMesh()[patches_[i]].faceCentres();
       forAll(Cf, f) {
         const scalar d = mag(Cf[f] - r.centre);
         if (d < nearest) {
@@ -130,7 +132,8 @@ fsiMeshGuard::Report fsiMeshGuard::check() {
     const bool near = Pstream::myProcNo() == at && face >= 0;
     const label i = fromRank(at, near ? patchIndex : label(0));
     r.face = fromRank(at, near ? face : label(0));
-    r.faceCentre = fromRank(at, near ? mesh_.boundary()[patches_[patchIndex]].Cf()[face] : point(Zero));
+    r.faceCentre =
+        fromRank(at, near ? mesh_.boundaryMesh()[patches_[patchIndex]].faceCentres()[face] : point(Zero));
     r.patch = mesh_.boundaryMesh()[patches_[i]].name();
     if (r.badPyramids > 0) {
       r.badFaceRank = returnReduce(firstBad < 0 ? Pstream::nProcs() : Pstream::myProcNo(), minOp<label>());

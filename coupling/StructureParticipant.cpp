@@ -352,6 +352,20 @@ void StructureParticipant::alignTime(double t) {
 std::map<std::string, std::vector<double>> StructureParticipant::readState(
     const std::filesystem::path& file) {
   const structure::StateSnapshot s = structure::readState(file);
+  // A non-finite value would reach the projection and the fluid's mesh motion (a floating-point trap there):
+  // refused here, naming the dataset and the entry.
+  auto finite = [&](const std::vector<double>& values, const std::string& dataset) {
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (!std::isfinite(values[i]))
+        throw InputError(file.string() + ": restart state: " + dataset + "[" + std::to_string(i) + "] is " +
+                         std::to_string(values[i]) + " (not finite): the file is damaged");
+  };
+  finite({s.time}, "/@time");
+  finite({s.dt}, "/@dt");
+  finite(s.x, "/x");
+  finite(s.v, "/v");
+  for (const auto& [name, values] : s.arrays) finite(values, "/arrays/" + name);
+  for (const auto& [name, value] : s.scalars) finite({value}, "/scalars/" + name);
   const std::size_t n = scene_->model->nodes.x.size();
   if (s.x.size() != n || s.v.size() != n)
     throw InputError(file.string() + ": restart state has " + std::to_string(s.x.size() / 3) +

@@ -10,9 +10,13 @@
 #              structure restart together) to END_TIME or the case's end time
 #   -parallel  decomposePar, mpirun -np N pimpleFoam -parallel (N: system/decomposeParDict), reconstructPar
 # Without -continue, a folder that already holds results is refused (exit 2) with a one-line message.
+# Ctrl-C or SIGTERM: the run stops at the end of the window with its state written, exit 130 (SIGINT) or 143
+# (SIGTERM); -continue goes on from there. A second Allrun in a folder where one runs is refused (exit 2).
 
 fsi_here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 fsi_root=$(cd "$fsi_here/../.." && pwd)
+# the lock and the stoppable solver run (Ctrl-C, SIGTERM: the state kept), shared with ramair-kt/Allrun
+. "$fsi_here/run-functions.sh"
 export FSI_SHARE_DIR=$fsi_here
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 
@@ -100,16 +104,26 @@ fsiArgs() {
   done
   local again="./Allrun"
   [ "$fsi_parallel" = 1 ] && again="./Allrun.parallel"
-  local latest
+  fsiLock
+  local latest leftovers
   latest=$(fsiLatestTime)
+  leftovers=$(ls -d processor* structure log.pimpleFoam* summary.json 2> /dev/null)
+  # every refusal names a command that works from this folder's state
   if [ "$fsi_continue" = 0 ]; then
-    if fsiGreater "$latest" 0 || [ -n "$(ls -d processor* structure log.pimpleFoam* summary.json 2> /dev/null)" ]; then
-      echo "Allrun: $PWD holds results of an earlier run (latest time $latest): ./Allclean to start again, or $again -continue [END_TIME] to go on from t = $latest" >&2
+    if fsiGreater "$latest" 0; then
+      echo "Allrun: $PWD holds results of an earlier run (latest time $latest): $again -continue [END_TIME] goes on from t = $latest, ./Allclean && $again starts again" >&2
+      exit 2
+    elif [ -n "$leftovers" ]; then
+      echo "Allrun: $PWD holds what an earlier run left before it wrote anything after t = 0: ./Allclean && $again starts again" >&2
       exit 2
     fi
   else
     if ! fsiGreater "$latest" 0; then
-      echo "Allrun: no earlier run to continue in $PWD: $again [END_TIME] starts one" >&2
+      if [ -n "$leftovers" ]; then
+        echo "Allrun: the earlier run in $PWD wrote nothing after t = 0, so there is nothing to continue: ./Allclean && $again [END_TIME] starts again" >&2
+      else
+        echo "Allrun: no earlier run to continue in $PWD: $again [END_TIME] starts one" >&2
+      fi
       exit 2
     fi
     if [ "$fsi_parallel" = 1 ] && [ ! -d processor0 ]; then
@@ -236,6 +250,13 @@ fsiProgress() {
   return 0
 }
 
+# fsiConsole: the console's share of the solver output: the [fsi] lines (set-up, progress, totals) and what needs
+# a look (a window that did not converge, warnings, errors); the per-window `fsiCoupling: t = ...` lines stay in
+# the log
+fsiConsole() {
+  grep --line-buffered -E '^\[fsi\] |NOT CONVERGED|[Ww]arning|FATAL|[Ee]rror([^s]|$)' | fsiProgress
+}
+
 # runSolver: pimpleFoam, serial or on the ranks of system/decomposeParDict; the full output goes to
 # log.pimpleFoam (log.pimpleFoam.N for a continued run), the coupling's progress lines (`[fsi] ...`, or
 # `fsiCoupling: ...` from older adapters) to the console.
@@ -258,11 +279,11 @@ runSolver() {
     cmd+=(pimpleFoam -parallel)
   fi
   echo "Running ${cmd[*]} (log: $log)"
-  # the console: the [fsi] lines (set-up, progress, totals) and what needs a look (a window that did not
-  # converge, warnings, errors); the per-window `fsiCoupling: t = ...` lines stay in the log
-  "${cmd[@]}" < /dev/null 2>&1 | tee "$log" |
-    grep --line-buffered -E '^\[fsi\] |NOT CONVERGED|[Ww]arning|FATAL|[Ee]rror' | fsiProgress
-  local rc=${PIPESTATUS[0]}
+  # Ctrl-C / SIGTERM: the run stops at the end of the window with its state written (run-functions.sh)
+  fsiRunStoppable "$log" fsiConsole "${cmd[@]}"
+  local rc=$fsi_rc again="./Allrun"
+  [ "$fsi_parallel" = 1 ] && again="./Allrun.parallel"
+  [ -n "$fsi_signal" ] && fsiStoppedExit "$again" "$(fsiLatestTime)"
   if [ "$rc" != 0 ]; then
     echo "pimpleFoam failed (exit $rc); the end of $log:" >&2
     tail -20 "$log" >&2

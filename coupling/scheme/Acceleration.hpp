@@ -9,7 +9,9 @@
 // measured iteration counts are in docs/COUPLING.md.
 
 #include <Eigen/Dense>
+#include <map>
 #include <string>
+#include <vector>
 
 namespace fsi::coupling {
 
@@ -22,6 +24,14 @@ class Acceleration {
   /// compute() is the first iteration of a new window.
   virtual void onTimeWindowComplete(bool converged) = 0;
   virtual std::string name() const = 0;
+
+  /// What the variant carries from one window to the next (between windows: after
+  /// onTimeWindowComplete()), as named arrays for a restart state; empty if it carries nothing.
+  using State = std::map<std::string, std::vector<double>>;
+  virtual State state() const { return {}; }
+  /// Continue from state() of an earlier run (between windows). A state that does not fit (a missing or
+  /// inconsistent array, a non-finite value) throws InputError naming the array.
+  virtual void restore(const State& /*state*/) {}
 };
 
 }  // namespace fsi::coupling

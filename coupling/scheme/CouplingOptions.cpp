@@ -509,7 +509,7 @@ OptionSchema couplingOptionSchema() {
   coupled.push_back(restore);
   coupled.push_back(wordSpec("meshGuard", OptionType::Switch, "yes", {},
                              "stop with a diagnosis when the moving mesh inverts a cell or crushes it below "
-                             "minVolumeRatio (checked after every fluid solve)"));
+                             "minVolumeRatio (checked after every mesh motion, before the fluid solves)"));
   // 0.01: two orders of magnitude below the shrinkage of the test cases' meshes (they stay above 0.96), and a
   // stop before a cell's Courant number can have grown a hundredfold at the fixed step (docs/COUPLING.md
   // "When the run stops"); 0 keeps only the inversion checks.

@@ -93,6 +93,16 @@ class CouplingScheme {
   /// (loadsAtWindowStart() of that run), so that a restarted run relaxes its loads (loadRelaxation < 1) like
   /// the uninterrupted one.
   void restoreLoadsAtWindowStart(const Eigen::VectorXd& loads);
+  /// What the implicit scheme's acceleration carries between windows (empty for the staggered scheme, or
+  /// an acceleration that carries nothing), and its restore after initialize(): a restarted run iterates
+  /// like the uninterrupted one (IQN-ILS' reused columns, Aitken's last factor).
+  Acceleration::State accelerationState() const {
+    return acceleration_ && config_.kind == SchemeKind::Implicit ? acceleration_->state()
+                                                                 : Acceleration::State{};
+  }
+  void restoreAccelerationState(const Acceleration::State& state) {
+    if (acceleration_ && config_.kind == SchemeKind::Implicit) acceleration_->restore(state);
+  }
   /// Accepted end displacements, newest first (what restoreHistory() takes).
   const std::vector<Eigen::VectorXd>& history() const { return history_; }
 

@@ -22,6 +22,9 @@
 #                     one results series / coupling.csv / timing.json continued across the restart (t = 0
 #                     frame, times = the fluid's time names, "# restart at t = 0.25", totals = sum of
 #                     segments), then a restart from the earlier time 0.25 drops the stale later output
+#   bad-state       : a restart state with a non-finite value (/x, an interface history) or a missing or short
+#                     dataset (applied_loads, interface_history_2) is refused at start-up naming the file and the
+#                     dataset: no floating-point trap, no silent start without it
 #   bad-option      : each misspelt option of the issue stops the run at start-up naming the nearest key
 #   bad-value       : each out-of-range value stops the run at start-up naming the key and the valid range;
 #                     OpenFOAM's time-control keys (timeStart, executeInterval, writeControl, ...) are refused:
@@ -45,7 +48,8 @@
 #                     below half the initial cell (1e-3 m3 from blockMeshDict); the same on 2 ranks;
 #                     structure/last_stable_state.h5
 #                     holds the window before (also with scheme implicit); the normal coupled run passes and
-#                     reports its smallest ratio
+#                     reports its smallest ratio; a jump of metres in one window (1e6 Pa) stops with the
+#                     guard's diagnosis before the fluid solves on the inverted mesh (no floating-point trap)
 # Usage: run_adapter_test.sh MODE ADAPTER_LIB WORK_DIR
 set -uo pipefail
 mode=$1 lib=$2 work=$3
@@ -343,6 +347,43 @@ PY
     [ $rc -eq 0 ] || fail "restart from an earlier time exited with $rc"
     check_series "$work/restarted" "$work/continuous" 0.4 "0.25" 2 || fail "a restart from an earlier time left stale output"
     ;;
+  bad-state)
+    # A damaged restart state is refused at start-up naming the file and the dataset (issue 35 item 7): before,
+    # one inf in /x or a NaN in an interface history ended in a floating-point trap in the projection, and a
+    # deleted applied_loads or interface_history_2 was accepted silently.
+    prepare "$work/base"
+    set_entry "$work/base" endTime 0.25
+    solve "$work/base"
+    [ $rc -eq 0 ] || fail "the run to 0.25 exited with $rc"
+    set_entry "$work/base" endTime 0.3
+    set_entry "$work/base" startFrom latestTime
+    damaged() {
+      local name=$1 python=$2 expected=$3
+      rm -rf "$work/$name" && cp -r "$work/base" "$work/$name"
+      /usr/bin/python3 -c "import h5py; f = h5py.File('$work/$name/0.25/uniform/fsiStructure.h5', 'a'); $python" ||
+        fail "$name: could not damage the state"
+      solve "$work/$name"
+      [ $rc -ne 0 ] || fail "$name: the damaged state was accepted"
+      [ $rc -ne 136 ] && ! grep -q "sigFpe" "$log" || fail "$name: a floating-point trap instead of a refusal"
+      grep -q "fsiStructure.h5" "$log" && grep -qF -- "$expected" "$log" ||
+        fail "$name: the message does not name the file and $expected"
+      ! grep -q "^Time = 0.26" "$log" || fail "$name: the run went on"
+      echo "$name: $(grep -m1 -F -- "$expected" "$log" | cut -c1-200)"
+    }
+    damaged x-inf "f['x'][0] = float('inf')" "/x[0]"
+    damaged history-nan "f['arrays/interface_history_1'][3] = float('nan')" "/arrays/interface_history_1[3]"
+    damaged no-applied-loads "del f['arrays/applied_loads']" "/arrays/applied_loads is missing"
+    damaged no-history-2 "del f['arrays/interface_history_2']" "/arrays/interface_history_2 is missing"
+    damaged short-history "d = f['arrays/interface_history_0'][:-3]; del f['arrays/interface_history_0']; f['arrays/interface_history_0'] = d" "/arrays/interface_history_0 has"
+    # no state at all in a later time directory: refused (it used to be a warning, the run going on uncoupled)
+    rm -rf "$work/no-state" && cp -r "$work/base" "$work/no-state" && rm "$work/no-state/0.25/uniform/fsiStructure.h5"
+    solve "$work/no-state"
+    [ $rc -ne 0 ] && grep -q "there is no structure state" "$log" && ! grep -q "^Time = 0.26" "$log" ||
+      fail "a restart without the structure's state was not refused at start-up"
+    # and the undamaged state still restarts
+    solve "$work/base"
+    [ $rc -eq 0 ] || fail "the undamaged restart exited with $rc"
+    ;;
   subcycles)
     # Subcycling must be consistent: its effect is of the order of the coupled time-step error and
     # vanishes with the step like it (it must not leave a step-independent offset).
@@ -558,12 +599,13 @@ PY
     echo "checkMesh: smallest volume below 5e-4 m3 first at t = $t_half; $bad_faces wrong-oriented faces first at t = $first_bad (smallest volume $bad_vmin m3)"
     # guarded DIR EXTRA [NP]: the overloaded run with the guard; checks the stop and sets stop_t, volume
     guarded() {
-      local dir=$1 extra=$2 np=${3:-1}
+      local dir=$1 extra=$2 np=${3:-1} load=${4:-50}
       prepare "$dir"
-      sed -i 's/value: 0.2}/value: 50}/' "$dir/structure.yaml"
+      sed -i "s/value: 0.2}/value: $load}/" "$dir/structure.yaml"
       [ -n "$extra" ] && fsi_option "$dir" "$extra"
       solve "$dir" "$np"
       [ $rc -ne 0 ] || fail "the guard did not stop the overloaded run ($extra)"
+      [ $rc -ne 136 ] || fail "the run died on a floating-point trap (exit 136), not the guard's stop"
       ! grep -q "sigFpe" "$log" || fail "the run died on a floating-point trap instead of the guard's diagnosis"
       for e in "mesh guard: t = " "the moving mesh has degraded" "Worst cell: " "Nearest interface face: patch bottom" \
                "Remedies: " "loadRelaxation" "last_stable_state.h5"; do
@@ -597,6 +639,11 @@ PY
     passes=$(grep -c "^Time = $stop_t\$" "$log")
     [ "$passes" -ge 2 ] || fail "the implicit run stopped in the window's first pass: the restore is not tested"
     echo "implicit: stopped in pass $passes of the window"
+    # A jump far beyond what the mesh can follow (5e6 times the load: the bottom moves metres in one window):
+    # the guard checks the moved mesh before the fluid solves on it, so the stop is its diagnosis, not the
+    # floating-point trap the solve on inverted cells ends in (exit 136, before the check moved to the motion).
+    guarded "$work/jump" "" 1 1e6
+    echo "jump: stopped at t = $stop_t"
     guarded "$work/ratio" "minVolumeRatio 0.5;"
     grep -q "shrunk below minVolumeRatio 0.5 of their initial volume" "$log" || fail "the ratio stop does not say so"
     [ "$stop_t" = "$t_half" ] || fail "minVolumeRatio 0.5 stopped at $stop_t, checkMesh's volume falls below 5e-4 m3 at $t_half"

@@ -19,6 +19,9 @@
 #   capped       `capped` is remesh with remesh_max 1: Allrun stops when the run asks for a second new mesh,
 #                exit non-zero, a message naming remesh_max and the time, the case kept as the run left it
 #                (the request, the fields at that time on both ranks, stage1/ and no stage2/).
+#   stopped      plain interrupted by SIGINT after 2 coupled windows (exit 130, fields and structure state at the
+#                stop on both ranks) and continued by `./Allrun -continue`: plain's 6 windows, lift within 0.5 %
+#                and drag within 5 % of plain's in each (issue 35 item 5)
 #   wall         `wall` is plain with wall_layers 3 and wall_after 3 (the adapter's remeshAt): 3 windows on the
 #                plain mesh, one new mesh at t = 3 dt with prism layers on the wing (snappyHexMeshDict.wall; more
 #                cells than the first mesh, checkMesh passing), then the last 3 steps' flow time in 12 windows of
@@ -55,6 +58,36 @@ grep -E "New mesh|Thin wall cells" wall.log
 grep -q "Layers added" wall/log.snappyHexMesh.remesh1 && ! grep -q "Layers added" wall/log.snappyHexMesh ||
   fail "wall: the first mesh should have no layers and the new one should (log.snappyHexMesh, .remesh1)"
 [ -d wall/stage1 ] && [ ! -d wall/stage2 ] || fail "wall: expected one new mesh (stage1/, no stage2/)"
+
+# stopped: plain interrupted by SIGINT after its second coupled window (Allrun exits 130 with the state written at
+# the window's end on both ranks), then `./Allrun -continue` (the settings and -parallel recorded) to the end
+mkdir -p stopped && cp -r ramair-kt/. stopped/ && rm -f stopped/*.log
+cd stopped || exit 1
+set -m
+./Allrun.parallel -settings short.settings > ../stopped.log 2>&1 &
+pid=$!
+set +m
+n=0
+until [ "$(grep -vc '^[#t]' structure/coupling.csv 2> /dev/null || true)" -ge 2 ] 2> /dev/null; do
+  sleep 0.2
+  n=$((n + 1))
+  kill -0 $pid 2> /dev/null && [ $n -lt 3000 ] || { tail -20 ../stopped.log; fail "stopped: no second window"; }
+done
+kill -INT $pid
+wait $pid
+rc=$?
+[ $rc -eq 130 ] || { tail -20 ../stopped.log; fail "stopped: Allrun exited $rc on SIGINT, not 130"; }
+Ts=$(sed -n 's/^time //p' structure/interrupted)
+for r in 0 1; do
+  [ -f "processor$r/$Ts/U" ] || fail "stopped: no fields at $Ts on rank $r"
+done
+[ -f "processor0/$Ts/uniform/fsiStructure.h5" ] || fail "stopped: no structure state at $Ts"
+grep -q "^Allrun: stopped on SIGINT at t = $Ts s.* ./Allrun -continue" ../stopped.log || fail "stopped: no line naming ./Allrun -continue"
+./Allrun -continue > ../continued.log 2>&1 || { tail -20 ../continued.log; fail "stopped: ./Allrun -continue failed"; }
+grep -q "continued from t = $Ts" ../continued.log || fail "stopped: the continued run did not start at $Ts"
+[ -f summary.json ] || fail "stopped: no summary.json after -continue"
+cd .. || exit 1
+echo "stopped: SIGINT at t = $Ts, continued to the end"
 
 # same-mesh: remesh's first stop, continued on the old mesh as moved (stage1/T/polyMesh/points as the new
 # undeformed points), its fields copied (U p k omega nut and the fluxes phi, Uf), the displacement zero.
@@ -112,6 +145,16 @@ for r in same:
     check(dl < 0.005, f"same-mesh: lift {100 * dl:.2f} % off plain's at t = {r['time']}")
     check(dd < 0.05, f"same-mesh: drag {100 * dd:.2f} % off plain's at t = {r['time']}")
 check(n >= 3, f"same-mesh: {n} windows to compare, fewer than 3")
+# stopped + continued: plain's windows, the ones after the stop within the same-mesh bounds (the restart continues
+# fields written with 12 digits and the structure's state exactly)
+stopped = rows("stopped")
+check(len(stopped) == 6, f"stopped: {len(stopped)} windows after -continue, not 6")
+for r, a in zip(stopped, plain):
+    lift, drag = (float(r["Fz_fluid"]), float(a["Fz_fluid"])), (float(r["Fx_fluid"]), float(a["Fx_fluid"]))
+    dl, dd = abs(lift[0] / lift[1] - 1), abs(drag[0] / drag[1] - 1)
+    print(f"stopped t {r['time']}: lift {lift[0]:.3f} (plain {lift[1]:.3f}, {100 * dl:.3f} %), drag {100 * dd:.3f} % off")
+    check(abs(float(r["time"]) - float(a["time"])) < 1e-6, f"stopped: window at {r['time']}, plain's at {a['time']}")
+    check(dl < 0.005 and dd < 0.05, f"stopped: lift {100 * dl:.2f} % / drag {100 * dd:.2f} % off plain's at t = {r['time']}")
 wall = rows("wall")
 dt = float(plain[1]["time"]) - float(plain[0]["time"])
 times = [float(r["time"]) for r in wall]

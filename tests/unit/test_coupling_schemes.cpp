@@ -30,6 +30,7 @@
 #include "coupling/scheme/acceleration/Aitken.hpp"
 #include "coupling/scheme/acceleration/ConstantRelaxation.hpp"
 #include "coupling/scheme/acceleration/IqnIls.hpp"
+#include "structure/model/Error.hpp"
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::coupling;
@@ -146,6 +147,89 @@ TEST(CouplingAcceleration, IqnIlsReuseCarriesTheJacobianToTheNextWindow) {
   EXPECT_LE(secondReuse, 3);
   EXPECT_LT(secondReuse, first);
   EXPECT_GT(secondFresh, secondReuse);
+}
+
+namespace {
+// Windows of a time-invariant linear map with a new right-hand side each: the iterates of window `w`.
+std::vector<VectorXd> windowIterates(Acceleration& acc, const MatrixXd& a, int w) {
+  const Eigen::Index n = a.rows();
+  const VectorXd b = VectorXd::LinSpaced(n, 1.0 + w, 2.0 + 3.0 * w);
+  VectorXd d = VectorXd::Zero(n);
+  std::vector<VectorXd> out;
+  for (int it = 0; it < 100; ++it) {
+    const VectorXd dt = a * d + b;
+    if ((dt - d).norm() <= 1e-10 * dt.norm()) break;
+    d = acc.compute(d, dt);
+    out.push_back(d);
+  }
+  acc.onTimeWindowComplete(true);
+  return out;
+}
+}  // namespace
+
+TEST(CouplingAcceleration, ARestoredStateIteratesLikeTheUninterruptedRun) {
+  // Issue 35 item 3: a restart keeps what the acceleration carries between windows. After three windows,
+  // a new instance restored from the old one's state() takes exactly the old one's iterates in the fourth
+  // window; a new instance without it does not (it has lost IQN-ILS' reused columns, Aitken's factor).
+  const int n = 8;
+  const MatrixXd q = randomOrthogonal(n);
+  const MatrixXd a = -q * VectorXd::LinSpaced(n, 0.5, 6.0).asDiagonal() * q.transpose();
+  IqnIlsOptions io;
+  io.reuseSteps = 3;
+  io.relaxFirstIteration = false;
+  AitkenOptions ao;
+  ao.initialOmega = 0.9;
+  const std::vector<std::function<std::unique_ptr<Acceleration>()>> makers{
+      [&] { return std::make_unique<IqnIls>(io); }, [&] { return std::make_unique<Aitken>(ao); }};
+  for (const auto& make : makers) {
+    auto run = make(), restored = make(), fresh = make();
+    for (int w = 0; w < 3; ++w) windowIterates(*run, a, w);
+    const Acceleration::State st = run->state();
+    ASSERT_FALSE(st.empty()) << run->name();
+    restored->restore(st);
+    const std::vector<VectorXd> expected = windowIterates(*run, a, 3);
+    const std::vector<VectorXd> got = windowIterates(*restored, a, 3);
+    const std::vector<VectorXd> lost = windowIterates(*fresh, a, 3);
+    ASSERT_EQ(got.size(), expected.size()) << run->name();
+    for (std::size_t i = 0; i < got.size(); ++i)
+      EXPECT_EQ(got[i], expected[i]) << run->name() << " iterate " << i;
+    EXPECT_NE(lost.size() == expected.size() && lost.back() == expected.back(), true) << run->name();
+  }
+  // IQN-ILS' reuse shows in the count: the restored window needs fewer iterations than the fresh one.
+  IqnIls run(io), restored(io), fresh(io);
+  for (int w = 0; w < 3; ++w) windowIterates(run, a, w);
+  restored.restore(run.state());
+  EXPECT_LT(windowIterates(restored, a, 3).size() + 2, windowIterates(fresh, a, 3).size());
+}
+
+TEST(CouplingAcceleration, ABrokenStateIsRefusedNamingTheArray) {
+  IqnIlsOptions io;
+  io.reuseSteps = 2;
+  IqnIls acc(io);
+  const MatrixXd a = -2.0 * MatrixXd::Identity(3, 3);
+  for (int w = 0; w < 2; ++w) windowIterates(acc, a, w);
+  auto refused = [](Acceleration& x, Acceleration::State st, const std::string& what) {
+    try {
+      x.restore(st);
+      ADD_FAILURE() << "accepted a state with " << what;
+    } catch (const fsi::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  Acceleration::State st = acc.state();
+  ASSERT_FALSE(st["past_v"].empty());
+  st["past_v"][1] = std::numeric_limits<double>::quiet_NaN();
+  IqnIls other(io);
+  refused(other, st, "past_v[1]");
+  st = acc.state();
+  st.erase("past_w");
+  refused(other, st, "past_w");
+  st = acc.state();
+  st["past_w"].pop_back();
+  refused(other, st, "past_v");
+  Aitken aitken;
+  refused(aitken, {{"omega", {std::numeric_limits<double>::infinity()}}, {"first_window", {0.0}}}, "omega");
+  refused(aitken, {{"omega", {0.5}}}, "first_window");
 }
 
 namespace {

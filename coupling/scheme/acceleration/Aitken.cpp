@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "structure/model/Error.hpp"
+
 namespace fsi::coupling {
 
 Aitken::Aitken(AitkenOptions options) : opt_(options), omega_(options.initialOmega) {
@@ -42,6 +44,24 @@ Eigen::VectorXd Aitken::compute(const Eigen::VectorXd& d, const Eigen::VectorXd&
 
 void Aitken::onTimeWindowComplete(bool /*converged*/) {
   firstWindow_ = false;
+  iteration_ = 0;
+}
+
+Acceleration::State Aitken::state() const {
+  return {{"omega", {omega_}}, {"first_window", {firstWindow_ ? 1.0 : 0.0}}};
+}
+
+void Aitken::restore(const State& state) {
+  const auto omega = state.find("omega");
+  const auto first = state.find("first_window");
+  if (omega == state.end() || first == state.end())
+    throw InputError("Aitken state: needs the arrays omega and first_window");
+  if (omega->second.size() != 1 || !std::isfinite(omega->second[0]) || omega->second[0] == 0.0)
+    throw InputError("Aitken state: omega must be one finite non-zero value");
+  if (first->second.size() != 1 || (first->second[0] != 0.0 && first->second[0] != 1.0))
+    throw InputError("Aitken state: first_window must be one value, 0 or 1");
+  omega_ = clampOmega(omega->second[0]);
+  firstWindow_ = first->second[0] != 0.0;
   iteration_ = 0;
 }
 

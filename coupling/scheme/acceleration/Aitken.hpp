@@ -22,6 +22,9 @@ class Aitken final : public Acceleration {
   void onTimeWindowComplete(bool converged) override;
   std::string name() const override { return "aitken"; }
   double omega() const { return omega_; }
+  /// The last window's factor (the next window starts from it) and whether a window was completed.
+  State state() const override;
+  void restore(const State& state) override;
 
  private:
   double clampOmega(double w) const;

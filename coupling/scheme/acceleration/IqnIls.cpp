@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
+
+#include "structure/model/Error.hpp"
 
 namespace fsi::coupling {
 
@@ -106,6 +109,61 @@ void IqnIls::onTimeWindowComplete(bool converged) {
   else if (opt_.reuseSteps > 0) {
     past_.push_front(std::move(current_));
     while (int(past_.size()) > opt_.reuseSteps) past_.pop_back();
+  }
+  current_ = Columns{};
+  iteration_ = 0;
+}
+
+Acceleration::State IqnIls::state() const {
+  State s;
+  std::vector<double>& counts = s["past_columns"];
+  std::vector<double>& v = s["past_v"];
+  std::vector<double>& w = s["past_w"];
+  for (const Columns& c : past_) {
+    counts.push_back(double(c.v.size()));
+    for (std::size_t i = 0; i < c.v.size(); ++i) {
+      v.insert(v.end(), c.v[i].data(), c.v[i].data() + c.v[i].size());
+      w.insert(w.end(), c.w[i].data(), c.w[i].data() + c.w[i].size());
+    }
+  }
+  return s;
+}
+
+void IqnIls::restore(const State& state) {
+  auto array = [&](const char* name) -> const std::vector<double>& {
+    const auto it = state.find(name);
+    if (it == state.end()) throw InputError(fmt::format("IQN-ILS state: the array {} is missing", name));
+    for (std::size_t i = 0; i < it->second.size(); ++i)
+      if (!std::isfinite(it->second[i]))
+        throw InputError(fmt::format("IQN-ILS state: {}[{}] is not finite ({})", name, i, it->second[i]));
+    return it->second;
+  };
+  const std::vector<double>& counts = array("past_columns");
+  const std::vector<double>& v = array("past_v");
+  const std::vector<double>& w = array("past_w");
+  std::size_t columns = 0;
+  for (double c : counts) {
+    if (!(c >= 0 && c <= opt_.maxColumns && c == std::floor(c)))
+      throw InputError(
+          fmt::format("IQN-ILS state: past_columns holds {}, not a column count 0..{}", c, opt_.maxColumns));
+    columns += std::size_t(c);
+  }
+  if (v.size() != w.size() || (columns == 0 ? !v.empty() : v.size() % columns != 0))
+    throw InputError(
+        fmt::format("IQN-ILS state: past_v ({} values) and past_w ({}) do not hold {} columns of "
+                    "one length",
+                    v.size(), w.size(), columns));
+  const std::size_t n = columns == 0 ? 0 : v.size() / columns;
+  past_.clear();
+  std::size_t at = 0;
+  // Only as many windows as this run reuses (a run restarted with a smaller `reuse` keeps the newest).
+  for (std::size_t k = 0; k < counts.size() && int(k) < opt_.reuseSteps; ++k) {
+    Columns c;
+    for (std::size_t i = 0; i < std::size_t(counts[k]); ++i, at += n) {
+      c.v.emplace_back(Eigen::Map<const Eigen::VectorXd>(v.data() + at, Eigen::Index(n)));
+      c.w.emplace_back(Eigen::Map<const Eigen::VectorXd>(w.data() + at, Eigen::Index(n)));
+    }
+    past_.push_back(std::move(c));
   }
   current_ = Columns{};
   iteration_ = 0;

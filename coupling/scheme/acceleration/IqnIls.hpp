@@ -45,6 +45,10 @@ class IqnIls final : public Acceleration {
   int lastColumnsUsed() const { return lastColumnsUsed_; }  ///< after filtering, in the last step
   int lastColumnsFiltered() const { return lastColumnsFiltered_; }
   int safeguardedSteps() const { return safeguardedSteps_; }  ///< steps the step-length limit replaced
+  /// The past windows' columns kept for reuse: `past_columns` (the column count of each window, newest
+  /// first), `past_v` and `past_w` (the columns one after another, newest first).
+  State state() const override;
+  void restore(const State& state) override;
 
  private:
   struct Columns {

@@ -174,6 +174,22 @@ dr dr-soft.yaml "[{nodes: sheet/boundary, fix: all}]" 1.0e3 "pressure: {triangle
 expect 3 "above 100 %, which no fabric or line survives; check the units" -- \
   "$fsi" run dr-soft.yaml --out dr-soft --quiet
 
+# Issue 35, item 11: one rule for positive values, YAML types honoured, null located. Each of these ran
+# (exit 0 or 3) or lost its location before.
+expect 2 "good.yaml:1:1: materials.film.thickness: must be > 0 and at least 2.2e-308" -- \
+  "$fsi" run good.yaml --out o --set materials.film.thickness=1.0e-320
+expect 2 "materials.film.young: expected a number, got the string '1e8' (tagged !!str)" -- \
+  "$fsi" run good.yaml --out o --set 'materials.film.young=!!str 1e8'
+expect 2 "materials.film.young: expected a number, got the string '1e8' (quoted)" -- \
+  "$fsi" run good.yaml --out o --set 'materials.film.young="1e8"'
+expect 2 "constraints[0].fix: the tag '!foo' is not supported" -- \
+  "$fsi" run good.yaml --out o --set 'constraints.0.fix=!foo all'
+expect 2 "--set 'time.end=': no value after '='" -- "$fsi" run good.yaml --out o --set time.end=
+scene null-entry.yaml ""
+sed -i 's/^  - {nodes: sheet\/boundary, fix: all}$/&\n  - null/' null-entry.yaml
+expect 2 "null-entry.yaml:10:5: constraints[1]: a list entry has no value (empty or null)" -- \
+  "$fsi" run null-entry.yaml --out o
+
 # A good run: exit 0 and a readable summary.
 expect 0 "probe  centre" -- "$fsi" run good.yaml --out good-out
 if [[ ! -s good-out/summary.json ]]; then

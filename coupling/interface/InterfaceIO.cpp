@@ -384,6 +384,60 @@ void readFaces(const fs::path& file, long numPoints, std::vector<int>& offsets, 
   lex.checkCount(count, long(offsets.size()) - 1, lex.line(), "face");
 }
 
+// The number of internal faces: the length of the `neighbour` list (one entry per internal face), or -1 when
+// the polyMesh has no neighbour file (a boundary-only mesh written by a tool or a test).
+// `line` is that of the list's count, for messages.
+long internalFaceCount(const fs::path& dir, int& line) {
+  std::error_code ec;
+  const fs::path file = dir / "neighbour";
+  if (!fs::exists(file, ec)) return -1;
+  FoamLexer lex(file);
+  lex.header();
+  line = lex.line();
+  long count = lex.openList("neighbour", 2);  // "0\n"
+  if (count >= 0) return count;
+  for (count = 0; !lex.closes(); ++count) lex.integer("cell label");
+  return count;
+}
+
+// Every patch of the boundary file, not only the one asked for, as OpenFOAM's polyBoundaryMesh checks them:
+// names unique; each patch's faces inside the faces file and after the internal faces; the patches one after
+// the other without gap or overlap, from the end of the internal faces to the last face.
+void checkPatches(const std::vector<Patch>& patches, const fs::path& boundaryFile, const fs::path& facesFile,
+                  long numFaces, long numInternal, const fs::path& neighbourFile, int neighbourLine) {
+  const std::string b = boundaryFile.string();
+  if (numInternal > numFaces)
+    throw InputError(fmt::format("{}:{}: lists {} internal faces, but {} has only {} faces",
+                                 neighbourFile.string(), neighbourLine, numInternal, facesFile.string(),
+                                 numFaces));
+  long next = numInternal >= 0 ? numInternal : (patches.empty() ? 0 : patches.front().startFace);
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const Patch& p = patches[i];
+    // Written so that it cannot overflow: startFace and nFaces may each be near LONG_MAX.
+    if (p.startFace > numFaces || p.nFaces > numFaces - p.startFace)
+      throw InputError(fmt::format("{}:{}: patch '{}' has {} faces from face {}, but {} has {} faces", b,
+                                   p.line, p.name, p.nFaces, p.startFace, facesFile.string(), numFaces));
+    if (numInternal >= 0 && p.startFace < numInternal)
+      throw InputError(
+          fmt::format("{}:{}: patch '{}' starts at face {}, inside the {} internal faces (the "
+                      "length of {}); boundary faces follow the internal ones",
+                      b, p.line, p.name, p.startFace, numInternal, neighbourFile.string()));
+    if (p.startFace != next)
+      throw InputError(fmt::format(
+          "{}:{}: patch '{}' starts at face {}, but {} ends at face {}; patches must follow each other "
+          "without gap or overlap",
+          b, p.line, p.name, p.startFace,
+          i == 0 ? std::string("the internal faces' list") : fmt::format("patch '{}'", patches[i - 1].name),
+          next));
+    next = p.startFace + p.nFaces;
+  }
+  if (!patches.empty() && next != numFaces)
+    throw InputError(fmt::format(
+        "{}:{}: the last patch '{}' ends at face {}, but {} has {} faces: faces {} to "
+        "{} belong to no patch",
+        b, patches.back().line, patches.back().name, next, facesFile.string(), numFaces, next, numFaces - 1));
+}
+
 bool endsWithMsh(const std::string& s) {
   if (s.size() < 4) return false;
   std::string tail = s.substr(s.size() - 4);
@@ -405,6 +459,13 @@ InterfaceMesh readOpenFoamPatchUnguarded(const fs::path& caseDir, const std::str
           fmt::format("{}: no such file (is {} an OpenFOAM case?)", (dir / name).string(), caseDir.string()));
   const fs::path boundaryFile = dir / "boundary";
   const std::vector<Patch> patches = readBoundary(boundaryFile);
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (patches[j].name == patches[i].name)
+        throw InputError(
+            fmt::format("{}:{}: patch '{}' is defined twice (first at line {}); patch names must "
+                        "be unique",
+                        boundaryFile.string(), patches[i].line, patches[i].name, patches[j].line));
   const auto it =
       std::find_if(patches.begin(), patches.end(), [&](const Patch& p) { return p.name == patch; });
   if (it == patches.end()) {
@@ -419,11 +480,9 @@ InterfaceMesh readOpenFoamPatchUnguarded(const fs::path& caseDir, const std::str
   std::vector<int> offsets, nodes;
   readFaces(dir / "faces", long(points.size()), offsets, nodes);
   const long numFaces = long(offsets.size()) - 1;
-  // Written so that it cannot overflow: startFace and nFaces may each be near LONG_MAX.
-  if (it->startFace > numFaces || it->nFaces > numFaces - it->startFace)
-    throw InputError(fmt::format("{}:{}: patch '{}' has {} faces from face {}, but {} has {} faces",
-                                 boundaryFile.string(), it->line, patch, it->nFaces, it->startFace,
-                                 (dir / "faces").string(), numFaces));
+  int neighbourLine = 0;
+  const long numInternal = internalFaceCount(dir, neighbourLine);
+  checkPatches(patches, boundaryFile, dir / "faces", numFaces, numInternal, dir / "neighbour", neighbourLine);
   const int first = offsets[std::size_t(it->startFace)];
   std::vector<int> patchOffsets,
       patchNodes(nodes.begin() + first, nodes.begin() + offsets[std::size_t(it->startFace + it->nFaces)]);

@@ -8,28 +8,19 @@ namespace fsi::structure {
 
 namespace {
 
-// A density the lumped masses can hold: a subnormal one would make them underflow to 0.
-void checkDensity(const YamlMap& m, double density) {
-  if (!(density > 0) || !std::isnormal(density))
-    m.failAt("density",
-             "must be > 0 and at least 2.2e-308 (a smaller, subnormal density makes the lumped masses "
-             "underflow to 0)");
-}
-
 int readMembrane(const YamlMap& m, const std::string& name, const std::vector<std::string>& validKeys,
                  MaterialTable& table) {
   MembraneMaterial mm;
   mm.name = name;
-  mm.young = m.number("young");
+  // Every positive quantity under one rule (isPositiveNormal): a subnormal thickness or density (1e-320)
+  // would make the lumped masses underflow to 0.
+  mm.young = m.positive("young");
   mm.poisson = m.number("poisson");
-  mm.thickness = m.number("thickness");
-  mm.density = m.number("density");
+  mm.thickness = m.positive("thickness");
+  mm.density = m.positive("density");
   mm.wrinkling = m.boolean("wrinkling", true);
   m.finish(validKeys);
-  if (!(mm.young > 0)) m.failAt("young", "must be > 0");
   if (!(mm.poisson >= 0 && mm.poisson < 0.5)) m.failAt("poisson", "must be in [0, 0.5)");
-  if (!(mm.thickness > 0)) m.failAt("thickness", "must be > 0");
-  checkDensity(m, mm.density);
   table.membrane.push_back(mm);
   return int(table.membrane.size()) - 1;
 }
@@ -38,13 +29,10 @@ int readCable(const YamlMap& m, const std::string& name, const std::vector<std::
               MaterialTable& table) {
   CableMaterial cm;
   cm.name = name;
-  cm.young = m.number("young");
-  cm.area = m.number("area");
-  cm.density = m.number("density");
+  cm.young = m.positive("young");
+  cm.area = m.positive("area");
+  cm.density = m.positive("density");
   m.finish(validKeys);
-  if (!(cm.young > 0)) m.failAt("young", "must be > 0");
-  if (!(cm.area > 0)) m.failAt("area", "must be > 0");
-  checkDensity(m, cm.density);
   table.cable.push_back(cm);
   return int(table.cable.size()) - 1;
 }
@@ -53,10 +41,8 @@ int readPointMass(const YamlMap& m, const std::string& name, const std::vector<s
                   MaterialTable& table) {
   PointMassMaterial pm;
   pm.name = name;
-  pm.mass = m.number("mass");
+  pm.mass = m.positive("mass");  // not subnormal: 1/m would overflow to inf in the step loop
   m.finish(validKeys);
-  // Normal, not just > 0: a subnormal mass would make 1/m overflow to inf in the step loop.
-  if (!(pm.mass > 0) || !std::isnormal(pm.mass)) m.failAt("mass", "must be a finite number > 0 [kg]");
   table.pointMass.push_back(pm);
   return int(table.pointMass.size()) - 1;
 }

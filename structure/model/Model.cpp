@@ -9,6 +9,7 @@
 
 #include "structure/elements/ElementKind.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/model/PositiveValue.hpp"
 
 namespace fsi::structure {
 
@@ -30,16 +31,22 @@ namespace {
 
 void checkMaterials(const std::vector<MembraneMaterial>& mm, const std::vector<CableMaterial>& cm) {
   for (const auto& m : mm) {
-    if (!(m.young > 0)) throw InputError(fmt::format("material '{}': young must be > 0", m.name));
+    if (!isPositiveNormal(m.young))
+      throw InputError(fmt::format("material '{}': young {}", m.name, kPositiveRule));
     if (!(m.poisson >= 0 && m.poisson < 0.5))
       throw InputError(fmt::format("material '{}': poisson must be in [0, 0.5)", m.name));
-    if (!(m.thickness > 0)) throw InputError(fmt::format("material '{}': thickness must be > 0", m.name));
-    if (!(m.density > 0)) throw InputError(fmt::format("material '{}': density must be > 0", m.name));
+    if (!isPositiveNormal(m.thickness))
+      throw InputError(fmt::format("material '{}': thickness {}", m.name, kPositiveRule));
+    if (!isPositiveNormal(m.density))
+      throw InputError(fmt::format("material '{}': density {}", m.name, kPositiveRule));
   }
   for (const auto& m : cm) {
-    if (!(m.young > 0)) throw InputError(fmt::format("material '{}': young must be > 0", m.name));
-    if (!(m.area > 0)) throw InputError(fmt::format("material '{}': area must be > 0", m.name));
-    if (!(m.density > 0)) throw InputError(fmt::format("material '{}': density must be > 0", m.name));
+    if (!isPositiveNormal(m.young))
+      throw InputError(fmt::format("material '{}': young {}", m.name, kPositiveRule));
+    if (!isPositiveNormal(m.area))
+      throw InputError(fmt::format("material '{}': area {}", m.name, kPositiveRule));
+    if (!isPositiveNormal(m.density))
+      throw InputError(fmt::format("material '{}': density {}", m.name, kPositiveRule));
   }
 }
 

@@ -53,15 +53,19 @@ double lerpY(const std::vector<Point2>& s, double x) {
 }  // namespace
 
 AirfoilSection AirfoilSection::naca(const std::string& designation, const std::string& where) {
-  std::string digits;
+  // Exactly "NACA" (any case), optional spaces, then 4 or 5 digits in one piece; or the digits alone. Signs,
+  // dashes and spaces inside the digits are refused: "NACA -4415" or "NACA 44-15" is not a NACA section.
   std::string rest = designation;
   for (char& c : rest) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (rest.rfind("naca", 0) == 0) rest = rest.substr(4);
-  for (char c : rest) {
-    if (c == ' ' || c == '-' || c == '_') continue;
-    if (!std::isdigit(static_cast<unsigned char>(c))) badNaca(where, designation, "expected 4 or 5 digits");
-    digits += c;
-  }
+  const std::size_t first = rest.find_first_not_of(' ');
+  const std::string digits = first == std::string::npos ? std::string() : rest.substr(first);
+  const bool allDigits = !digits.empty() && std::all_of(digits.begin(), digits.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) != 0;
+  });
+  if (!allDigits || (digits.size() != 4 && digits.size() != 5))
+    badNaca(where, designation,
+            "expected 'NACA' and 4 or 5 digits in one piece (NACA 4415, naca23012, 0012), nothing else");
   AirfoilSection s;
   s.name_ = "NACA " + digits;
   auto d = [&](int i) { return digits[i] - '0'; };

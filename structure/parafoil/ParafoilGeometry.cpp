@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "structure/model/Error.hpp"
+#include "structure/model/PositiveValue.hpp"
 
 namespace fsi::structure::parafoil {
 
@@ -20,7 +21,9 @@ using P3 = std::array<double, 3>;
 }
 
 void requireRange(const std::string& p, double v, double lo, double hi, bool loOpen, bool hiOpen) {
-  const bool ok = std::isfinite(v) && (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
+  // An open bound at 0 means a positive quantity: under the one rule for those, not subnormal.
+  const bool above = loOpen ? v > lo && (lo != 0 || isPositiveNormal(v)) : v >= lo;
+  const bool ok = std::isfinite(v) && above && (hiOpen ? v < hi : v <= hi);
   if (!ok)
     invalid(p,
             fmt::format("is {}; valid: {}{:g}, {:g}{}", v, loOpen ? "(" : "[", lo, hi, hiOpen ? ")" : "]"));
@@ -28,9 +31,9 @@ void requireRange(const std::string& p, double v, double lo, double hi, bool loO
 
 void validate(const ParafoilParams& q) {
   const double inf = std::numeric_limits<double>::infinity();
-  requireRange("span", q.span, 0, inf, true, true);
-  requireRange("root_chord", q.rootChord, 0, inf, true, true);
-  requireRange("tip_chord", q.tipChord, 0, inf, false, true);
+  requireRange("span", q.span, 0, kMaxSpan, true, false);
+  requireRange("root_chord", q.rootChord, 0, q.span, true, false);  // at most the span
+  if (q.tipChord) requireRange("tip_chord", *q.tipChord, 0, q.span, true, false);
   if (q.cells < 1) invalid("cells", fmt::format("is {}; valid: at least 1", q.cells));
   requireRange("arc_radius", q.arcRadius, 0, inf, false, true);
   if (q.arcRadius > 0 && q.span / q.arcRadius > kPi)
@@ -52,6 +55,12 @@ void validate(const ParafoilParams& q) {
   requireRange("bulge", q.bulge, 0, 0.5, false, false);
   if (q.spanDivisions < 1 || q.spanDivisions > 10000)
     invalid("span_divisions", fmt::format("is {}; valid: 1 to 10000", q.spanDivisions));
+  // A value that cannot take effect is an error, as everywhere in the scene reader.
+  if (q.bulge > 0 && q.spanDivisions < 2)
+    invalid("bulge",
+            fmt::format("is {} but has no effect with span_divisions 1 (no skin node lies between two "
+                        "ribs); give span_divisions >= 2 or leave bulge out",
+                        q.bulge));
   if (q.alternateRibs && q.cells % 2 != 0)
     invalid("ribs", fmt::format("'alternate' needs an even number of cells (lines on both tip ribs and "
                                 "mirror-symmetric); cells is {}",
@@ -64,16 +73,16 @@ void validate(const ParafoilParams& q) {
                                                       q.rows[i], q.rows[i - 1]));
   }
   if (q.rows.size() > 26) invalid("rows", "has more than 26 rows (A to Z)");
-  if (!q.rowTrim.empty() && q.rowTrim.size() != q.rows.size())
+  const std::vector<double> trims = q.rowTrim.value_or(std::vector<double>());
+  if (q.rowTrim && trims.size() != q.rows.size())
     invalid("row_trim", fmt::format("has {} entries for {} rows; give one per row (A first) or leave it out",
-                                    q.rowTrim.size(), q.rows.size()));
-  for (std::size_t i = 0; i < q.rowTrim.size(); ++i)
-    if (!std::isfinite(q.rowTrim[i]))
-      invalid(fmt::format("row_trim[{}]", i),
-              fmt::format("is {}; valid: a finite length in metres", q.rowTrim[i]));
+                                    trims.size(), q.rows.size()));
+  for (std::size_t i = 0; i < trims.size(); ++i)
+    requireRange(fmt::format("row_trim[{}]", i), trims[i], -kMaxLineLength * q.span, kMaxLineLength * q.span,
+                 false, false);
   if (q.cascade < 1) invalid("cascade", fmt::format("is {}; valid: at least 1 (1 = no cascade)", q.cascade));
   requireRange("cascade_fraction", q.cascadeFraction, 0, 1, true, true);
-  requireRange("line_length", q.lineLength, 0, inf, true, true);
+  requireRange("line_length", q.lineLength, 0, kMaxLineLength, true, false);  // in spans
   requireRange("rigging_angle", q.riggingDeg, -45, 45, true, true);
   if (q.lineElements < 1 || q.lineElements > 10000)
     invalid("line_elements", fmt::format("is {}; valid: 1 to 10000", q.lineElements));
@@ -82,7 +91,10 @@ void validate(const ParafoilParams& q) {
                                         (q.cells + 1) / 2));
   requireRange("toggle_fraction", q.toggleFraction, 0, 1, false, true);
   requireRange("brake_slack", q.brakeSlack, 0, q.span, false, true);
-  requireRange("riser_length", q.riserLength, 0, inf, false, true);
+  if (q.brakeSlack > 0 && q.brakePoints == 0)
+    invalid("brake_slack",
+            fmt::format("is {} but has no effect with brake_points 0 (no brakes)", q.brakeSlack));
+  if (q.riserLength) requireRange("riser_length", *q.riserLength, 0, kMaxLineLength * q.span, true, false);
   const double count = 2.0 * q.chordwisePoints * (double(q.cells) * q.spanDivisions + 1) * 2.0;
   if (count > 5e7)
     invalid("chordwise_points", fmt::format("with span_divisions and cells gives {:.3g} triangles, more than "
@@ -151,7 +163,7 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
   const int ring = 2 * n - 2;       // nodes around one section
   const int divisions = q.cells * q.spanDivisions;
   const int stations = divisions + 1;
-  const double tip = q.tipChord > 0 ? q.tipChord : q.rootChord;
+  const double tip = q.tipChord.value_or(q.rootChord);
   std::vector<int> rowStation;
   int intakeFrom = -1, intakeTo = -1;
   const std::vector<double> xi = chordStations(q, rowStation, intakeFrom, intakeTo);
@@ -354,7 +366,7 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
     }
     // row_trim: the line into the confluence (the whole line, or the main line of a cascade) lengthened by
     // the row's trim, every cable of it in proportion; a trim that takes half the line or more is refused
-    const double trim = q.rowTrim.empty() ? 0.0 : q.rowTrim[row];
+    const double trim = q.rowTrim ? (*q.rowTrim)[row] : 0.0;
     auto trimmed = [&](int from, std::size_t first) {
       if (trim == 0.0) return;
       const double span = distance(m.points[std::size_t(from)], conf);
@@ -436,8 +448,8 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
     }
   m.lineGroups["main_lines"];
   m.lineGroups["riser"];
-  if (q.riserLength > 0) {
-    const int payload = addPoint({conf[0], conf[1], conf[2] - q.riserLength});
+  if (q.riserLength) {
+    const int payload = addPoint({conf[0], conf[1], conf[2] - *q.riserLength});
     chain(confluence, payload, {"riser"});
     m.nodeGroups["payload"] = {payload};
   } else {
@@ -451,6 +463,14 @@ MeshData buildParafoil(const ParafoilParams& q, const std::string& name) {
   m.lineTags.resize(m.lines.size());
   std::iota(m.lineTags.begin(), m.lineTags.end(), 1L);
   if (!m.lineRestLength.empty()) m.lineRestLength.resize(m.lines.size(), 0.0);
+  // The bounds above keep the design finite; this is the last guard that nothing else slipped through.
+  for (std::size_t i = 0; i < m.points.size(); ++i)
+    for (double x : m.points[i])
+      if (!std::isfinite(x))
+        throw InputError(
+            fmt::format("parafoil generator: node {} of the design has a non-finite coordinate; "
+                        "check span, chords, arc_radius and the line lengths",
+                        i + 1));
   return m;
 }
 

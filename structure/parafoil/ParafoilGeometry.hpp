@@ -29,6 +29,7 @@
 // leading_edge, trailing_edge, attachments, confluence, toggle_left, toggle_right, payload, intake_edge
 // (empty when closed).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,13 +40,15 @@ namespace fsi::structure::parafoil {
 
 struct ParafoilParams {
   // Planform.
-  double span = 3.0;          ///< b, measured along the arc [m]
-  double rootChord = 1.0;     ///< [m]
-  double tipChord = 0.0;      ///< [m]; 0 = rootChord (no taper)
-  int cells = 8;              ///< cells between ribs
-  double arcRadius = 3.0;     ///< R [m]; 0 = flat (no anhedral)
-  double incidenceDeg = 0.0;  ///< nose-up rotation of every section [deg]
-  double twistDeg = 0.0;      ///< additional nose-up rotation at the tips (linear in |s|) [deg]
+  // Optional values are std::optional: unset is never a number (a tip chord of 0 is an error, not
+  // "untapered").
+  double span = 3.0;               ///< b, measured along the arc [m], at most kMaxSpan
+  double rootChord = 1.0;          ///< [m], at most the span
+  std::optional<double> tipChord;  ///< [m], at most the span; unset = rootChord (no taper)
+  int cells = 8;                   ///< cells between ribs
+  double arcRadius = 3.0;          ///< R [m]; 0 = flat (no anhedral)
+  double incidenceDeg = 0.0;       ///< nose-up rotation of every section [deg]
+  double twistDeg = 0.0;           ///< additional nose-up rotation at the tips (linear in |s|) [deg]
   // Section.
   AirfoilSection section = AirfoilSection::naca("4415", "parafoil");
   bool intakeOpen = false;  ///< open intake between intakeFrom and intakeTo (x/c) on the lower surface
@@ -70,10 +73,10 @@ struct ParafoilParams {
   double lineLength = 0.7;                           ///< confluence distance / span
   double riggingDeg = 5.0;                           ///< forward tilt of the confluence point [deg]
   int lineElements = 4;                              ///< cables per line segment
-  /// Extra length of each row's lines [m], A first (empty: none): the trim a rigger sets. A row's line from
+  /// Extra length of each row's lines [m], A first (unset: none): the trim a rigger sets. A row's line from
   /// its attachment to the confluence point is that much longer (negative: shorter) than the design distance;
   /// with cascades its main line (junction -> confluence) carries it, every cable longer in proportion.
-  std::vector<double> rowTrim;
+  std::optional<std::vector<double>> rowTrim;
   // Brakes.
   int brakePoints = 3;           ///< trailing-edge points per side (at the outermost ribs); 0 = no brakes
   double toggleFraction = 0.15;  ///< toggle along confluence -> mean brake point
@@ -85,8 +88,15 @@ struct ParafoilParams {
   /// brake line then pulls the edge down over the span instead of denting the skin at its attachment point.
   bool trailingEdgeTape = false;
   // Payload.
-  double riserLength = 0.0;  ///< > 0: payload point this far below the confluence point, on a riser
+  /// Payload point this far below the confluence point, on a riser (at most kMaxLineLength spans); unset:
+  /// no riser, the payload point is the confluence point.
+  std::optional<double> riserLength;
 };
+
+/// Largest span [m] (the largest parafoils span about 50 m) and longest line or riser, in spans: bounds that
+/// keep every coordinate of the design a sane number.
+inline constexpr double kMaxSpan = 1000.0;
+inline constexpr double kMaxLineLength = 10.0;
 
 /// Builds the design shape. Throws fsi::InputError naming the parameter (as "parafoil generator: parameter
 /// 'x' ...") and its valid range for an impossible design.

@@ -44,7 +44,7 @@ ParafoilParams readParafoilParams(const YamlMap& g, const std::filesystem::path&
   const IntRange positive{1, 10000};
   q.span = g.number("span", q.span);
   q.rootChord = g.number("root_chord", q.rootChord);
-  q.tipChord = g.number("tip_chord", 0.0);
+  if (g.has("tip_chord")) q.tipChord = g.number("tip_chord");  // unset: no taper
   q.cells = int(g.integer("cells", q.cells, {1, 10000}));
   q.arcRadius = g.number("arc_radius", q.arcRadius);
   q.incidenceDeg = g.number("incidence", q.incidenceDeg);
@@ -93,13 +93,19 @@ ParafoilParams readParafoilParams(const YamlMap& g, const std::filesystem::path&
   q.lineLength = g.number("line_length", q.lineLength);
   q.riggingDeg = g.number("rigging_angle", q.riggingDeg);
   q.lineElements = int(g.integer("line_elements", q.lineElements, positive));
-  if (g.has("row_trim")) q.rowTrim = g.numbers("row_trim");
+  if (g.has("row_trim")) q.rowTrim = g.numbers("row_trim");  // a list, one per row (checked with the rows)
   q.brakePoints = int(g.integer("brake_points", q.brakePoints, {0, 10000}));
   q.toggleFraction = g.number("toggle_fraction", q.toggleFraction);
   q.brakeSlack = g.number("brake_slack", q.brakeSlack);
   q.trailingEdgeTape = g.boolean("trailing_edge_tape", q.trailingEdgeTape);
-  q.riserLength = g.number("riser_length", q.riserLength);
+  if (g.has("riser_length")) q.riserLength = g.number("riser_length");  // unset: no riser
   g.finish(parafoilKeys());
+  // A key given with a value that cannot take effect is an error (the rest: buildParafoil's checks).
+  if (g.has("cascade_fraction") && q.cascade == 1)
+    g.failAt("cascade_fraction",
+             "has no effect with cascade 1 (no junctions); leave it out or set cascade >= 2");
+  if (g.has("toggle_fraction") && q.brakePoints == 0)
+    g.failAt("toggle_fraction", "has no effect with brake_points 0 (no brakes); leave it out");
   return q;
 }
 

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "structure/model/Error.hpp"
+#include "structure/model/PositiveValue.hpp"
 
 namespace fsi::structure {
 namespace {
@@ -21,8 +22,9 @@ constexpr long long kMaxEntities = 100'000'000;
 }
 
 void requirePositive(const std::string& generator, const std::string& parameter, double value) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    invalid(generator, parameter, fmt::format("must be positive, got {}", value));
+  if (!isPositiveNormal(value)) {
+    invalid(generator, parameter,
+            fmt::format("must be positive (at least 2.2e-308, not subnormal), got {}", value));
   }
 }
 

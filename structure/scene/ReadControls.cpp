@@ -35,11 +35,11 @@ SolverControl readSolver(const YamlMap& top) {
       const std::string coef = sv.choice("coefficient", {"underwood", "rezaiee_pajand"}, "underwood");
       rs.coefficient = coef == "underwood" ? RelaxationSettings::Coefficient::Underwood
                                            : RelaxationSettings::Coefficient::RezaiePajand;
-      rs.lambda = sv.number("lambda", 0.0);
-      if (rs.lambda < 0) sv.failAt("lambda", "must be > 0 (or absent for the default)");
+      // Unset (0 inside RelaxationSettings) takes the rule's default; `lambda: 0` is an error, not "unset".
+      if (sv.has("lambda")) rs.lambda = sv.positive("lambda");
       rs.backstep = sv.boolean("backstep", true);
       rs.tolerance = sv.number("tolerance", 1e-3);
-      if (!(rs.tolerance > 0)) sv.failAt("tolerance", "must be > 0");
+      if (!isPositiveNormal(rs.tolerance)) sv.failAt("tolerance", kPositiveRule);
       rs.maxIterations = sv.integer("max_iterations", 200000, {1, std::numeric_limits<long>::max()});
       if (rs.maxIterations < 1) sv.failAt("max_iterations", "must be >= 1");
       rs.increments = int(sv.integer("increments", 1, {1, std::numeric_limits<int>::max()}));
@@ -80,24 +80,26 @@ TimeControl readTime(const YamlMap& top, bool relaxation) {
       tc.staticTolerance = s.number("tolerance", 1e-8);
       tc.endTime = s.number("max_time");
       s.finish({"tolerance", "max_time"});
-      if (!(tc.staticTolerance > 0)) s.failAt("tolerance", "must be > 0");
+      if (!isPositiveNormal(tc.staticTolerance)) s.failAt("tolerance", kPositiveRule);
       if (t.has("end")) t.failAt("end", "give either 'end' or 'until_static', not both");
     } else if (top.has("coupling") && !t.has("end")) {
       tc.endTime = std::numeric_limits<double>::infinity();  // set by the flow solver
     } else {
       tc.endTime = t.number("end");
     }
-    if (!(tc.endTime > 0)) t.fail("the end time (or until_static.max_time) must be > 0");
+    if (!(tc.endTime > 0) || (std::isfinite(tc.endTime) && !isPositiveNormal(tc.endTime)))
+      t.fail("the end time (or until_static.max_time) must be > 0 and at least 2.2e-308");
     tc.integrator.safety = t.number("safety", 0.9);
     if (!(tc.integrator.safety > 0 && tc.integrator.safety <= 1.0)) t.failAt("safety", "must be in (0, 1]");
     tc.integrator.fixedDt = t.number("fixed_dt", 0.0);
-    if (tc.integrator.fixedDt < 0) t.failAt("fixed_dt", "must be > 0 (or absent for the automatic step)");
+    if (tc.integrator.fixedDt != 0 && !isPositiveNormal(tc.integrator.fixedDt))
+      t.failAt("fixed_dt", std::string(kPositiveRule) + " (or absent for the automatic step)");
     tc.integrator.maxDt = t.number("max_dt", 1e300);
-    if (!(tc.integrator.maxDt > 0)) t.failAt("max_dt", "must be > 0");
+    if (!isPositiveNormal(tc.integrator.maxDt)) t.failAt("max_dt", kPositiveRule);
     tc.monitorEvery = t.integer("monitor_every", 100, {1, std::numeric_limits<long>::max()});
     if (tc.monitorEvery < 1) t.failAt("monitor_every", "must be >= 1");
     tc.energyTolerance = t.number("energy_tolerance", 0.05);
-    if (!(tc.energyTolerance > 0)) t.failAt("energy_tolerance", "must be > 0");
+    if (!isPositiveNormal(tc.energyTolerance)) t.failAt("energy_tolerance", kPositiveRule);
     tc.massScalingMinDt = t.number("mass_scaling_min_dt", 0.0);
     if (tc.massScalingMinDt < 0) t.failAt("mass_scaling_min_dt", "must be >= 0");
     t.finish({"end", "until_static", "safety", "fixed_dt", "max_dt", "monitor_every", "energy_tolerance",

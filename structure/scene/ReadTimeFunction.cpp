@@ -23,7 +23,7 @@ TimeFunction readTimeFunction(const YamlMap& parent, const std::string& key) {
     if (type == "ramp" || type == "smooth_step") {
       const double d = m.number("duration"), s = m.number("start", 0.0);
       m.finish({"type", "duration", "start"});
-      if (!(d > 0)) m.failAt("duration", "must be > 0");
+      if (!isPositiveNormal(d)) m.failAt("duration", kPositiveRule);
       return type == "ramp" ? TimeFunction::ramp(d, s) : TimeFunction::smoothStep(d, s);
     }
     if (type == "sine") {

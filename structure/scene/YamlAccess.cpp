@@ -46,6 +46,59 @@ std::string describe(IntRange r) {
   return fmt::format("an integer from {} to {}", r.lo, r.hi);
 }
 
+// yaml-cpp's tags: "?" for a plain scalar (and an untagged collection), "!" for a quoted one, the core
+// tags spelt out ("tag:yaml.org,2002:str" for `!!str`).
+const std::string kCoreTag = "tag:yaml.org,2002:";
+
+std::string shownTag(const std::string& tag) {
+  return tag.rfind(kCoreTag, 0) == 0 ? "!!" + tag.substr(kCoreTag.size()) : tag;
+}
+
+// The rule for scalars (docs/SCENES.md, "Errors"): a value's YAML type must be the key's. A number, an
+// integer or a boolean is written plain (or tagged `!!float`, `!!int`, `!!bool`); a quoted scalar or one
+// tagged
+// `!!str` is text and is refused where a number or a boolean is expected; null is never a value.
+enum class Expected { number, integer, boolean, text };
+
+const char* expectedName(Expected e) {
+  switch (e) {
+    case Expected::number:
+      return "a number";
+    case Expected::integer:
+      return "an integer";
+    case Expected::boolean:
+      return "true or false";
+    case Expected::text:
+      return "a string";
+  }
+  return "a value";
+}
+
+void checkScalar(const YAML::Node& n, const std::string& file, const std::string& path, Expected e) {
+  if (isNullValue(n))
+    throw InputError(locate(file, n, path) +
+                     fmt::format(": no value given (empty or null); expected {}", expectedName(e)));
+  if (!n.IsScalar()) throw InputError(locate(file, n, path) + fmt::format(": expected {}", expectedName(e)));
+  const std::string& tag = n.Tag();
+  if (tag == "?") return;
+  const bool text = tag == "!" || tag == kCoreTag + "str";
+  if (e == Expected::text) {
+    if (!text)
+      throw InputError(locate(file, n, path) +
+                       fmt::format(": expected a string, but '{}' is tagged {}", n.Scalar(), shownTag(tag)));
+    return;
+  }
+  if (text)
+    throw InputError(locate(file, n, path) +
+                     fmt::format(": expected {}, got the string '{}' ({}); write it without quotes or tag",
+                                 expectedName(e), n.Scalar(), tag == "!" ? "quoted" : "tagged !!str"));
+  const bool fits = e == Expected::boolean ? tag == kCoreTag + "bool"
+                                           : tag == kCoreTag + "float" || tag == kCoreTag + "int";
+  if (!fits)
+    throw InputError(locate(file, n, path) + fmt::format(": expected {}, but '{}' is tagged {}",
+                                                         expectedName(e), n.Scalar(), shownTag(tag)));
+}
+
 [[noreturn]] void outOfRange(const YAML::Node& n, const std::string& file, const std::string& path,
                              IntRange r) {
   throw InputError(locate(file, n, path) +
@@ -54,8 +107,12 @@ std::string describe(IntRange r) {
 
 }  // namespace
 
+bool isNullValue(const YAML::Node& n) {
+  return !n || n.IsNull() || n.Tag() == "tag:yaml.org,2002:null";
+}
+
 double asNumber(const YAML::Node& n, const std::string& file, const std::string& path) {
-  if (!n.IsScalar()) throw InputError(locate(file, n, path) + ": expected a number");
+  checkScalar(n, file, path, Expected::number);
   double v = 0;
   try {
     v = n.as<double>();
@@ -68,11 +125,21 @@ double asNumber(const YAML::Node& n, const std::string& file, const std::string&
   }
   if (!std::isfinite(v))
     throw InputError(locate(file, n, path) + fmt::format(": expected a finite number, got '{}'", n.Scalar()));
+  if (n.Tag() == "tag:yaml.org,2002:int" && v != std::floor(v))
+    throw InputError(locate(file, n, path) +
+                     fmt::format(": '{}' is tagged !!int but is not an integer", n.Scalar()));
+  return v;
+}
+
+double asPositive(const YAML::Node& n, const std::string& file, const std::string& path) {
+  const double v = asNumber(n, file, path);
+  if (!isPositiveNormal(v))
+    throw InputError(locate(file, n, path) + fmt::format(": {}; got {}", kPositiveRule, n.Scalar()));
   return v;
 }
 
 long asInteger(const YAML::Node& n, const std::string& file, const std::string& path, IntRange range) {
-  if (!n.IsScalar()) throw InputError(locate(file, n, path) + ": expected an integer");
+  checkScalar(n, file, path, Expected::integer);
   const std::string& s = n.Scalar();
   long long v = 0;
   if (isIntegerLiteral(s)) {
@@ -144,6 +211,7 @@ class DocumentChecker {
 
   Extent check(const YAML::Node& n, const std::string& path, int depth) {
     if (depth > kMaxDepth) fail(n, path, fmt::format("nested more than {} levels deep", kMaxDepth));
+    checkTag(n, path);
     if (n.IsScalar()) {
       checkText(n.Scalar(), n, path, "text");
       return {};
@@ -166,7 +234,13 @@ class DocumentChecker {
     };
     if (n.IsSequence()) {
       std::size_t i = 0;
-      for (const auto& child : n) add(check(child, fmt::format("{}[{}]", path, i++), depth + 1));
+      for (const auto& child : n) {
+        const std::string entry = fmt::format("{}[{}]", path, i++);
+        // No list of a scene holds nulls: refused here, where the entry still has its place in the file
+        // (a reader would see an empty mapping or selector without one).
+        if (isNullValue(child)) fail(child, entry, "a list entry has no value (empty or null)");
+        add(check(child, entry, depth + 1));
+      }
     } else {
       std::unordered_map<std::string, YAML::Mark> seen;
       for (const auto& kv : n) {
@@ -200,6 +274,32 @@ class DocumentChecker {
  private:
   [[noreturn]] void fail(const YAML::Node& n, const std::string& path, const std::string& message) const {
     throw InputError(locate(file_, n, path) + ": " + message);
+  }
+
+  // Tags: only YAML's core tags, each on a node of its kind (`!!map` on a mapping, `!!seq` on a list, the
+  // scalar ones on scalars, `!!null` on an empty one); whether a scalar's tag fits its key is checked when
+  // the key is read. Anything else (`!foo`, `!!binary`, `!!timestamp`) would be silently read as plain text.
+  void checkTag(const YAML::Node& n, const std::string& path) const {
+    const std::string& tag = n.Tag();
+    if (tag.empty() || tag == "?" || tag == "!") return;
+    const std::string core = "tag:yaml.org,2002:";
+    const std::string name = tag.rfind(core, 0) == 0 ? tag.substr(core.size()) : std::string();
+    const bool scalarTag =
+        name == "str" || name == "int" || name == "float" || name == "bool" || name == "null";
+    if (!scalarTag && name != "map" && name != "seq")
+      fail(n, path,
+           fmt::format("the tag '{}' is not supported; use plain values (or the core tags !!str, !!int, "
+                       "!!float, !!bool where they match the key)",
+                       name.empty() ? tag : "!!" + name));
+    const bool fits = n.IsMap() ? name == "map" : n.IsSequence() ? name == "seq" : scalarTag;
+    if (!fits)
+      fail(n, path,
+           fmt::format("the tag !!{} does not fit a {}", name,
+                       n.IsMap()        ? "mapping"
+                       : n.IsSequence() ? "list"
+                                        : "plain value"));
+    if (name == "null" && n.IsScalar() && !n.Scalar().empty())
+      fail(n, path, fmt::format("'{}' is tagged !!null, which is no value", n.Scalar()));
   }
 
   void checkText(const std::string& s, const YAML::Node& n, const std::string& path, const char* what) const {
@@ -311,7 +411,7 @@ YAML::Node YamlMap::require(const std::string& key) const {
 
 YAML::Node YamlMap::required(const std::string& key) const {
   const YAML::Node n = require(key);
-  if (n.IsNull()) {
+  if (isNullValue(n)) {
     // `nodes:` with nothing after it: a null value has no place in the file of its own, so name its key's.
     YAML::Node where = node_;
     for (const auto& kv : node_)
@@ -338,20 +438,27 @@ void YamlMap::failAt(const std::string& key, const std::string& message) const {
 }
 
 double YamlMap::number(const std::string& key) const {
-  return asNumber(require(key), file_, childPath(key));
+  return asNumber(required(key), file_, childPath(key));
 }
 double YamlMap::number(const std::string& key, double fallback) const {
   return has(key) ? number(key) : fallback;
 }
+double YamlMap::positive(const std::string& key) const {
+  return asPositive(required(key), file_, childPath(key));
+}
+double YamlMap::positive(const std::string& key, double fallback) const {
+  return has(key) ? positive(key) : fallback;
+}
 long YamlMap::integer(const std::string& key, IntRange range) const {
-  return asInteger(require(key), file_, childPath(key), range);
+  return asInteger(required(key), file_, childPath(key), range);
 }
 long YamlMap::integer(const std::string& key, long fallback, IntRange range) const {
   return has(key) ? integer(key, range) : fallback;
 }
 bool YamlMap::boolean(const std::string& key, bool fallback) const {
   if (!has(key)) return fallback;
-  const YAML::Node n = require(key);
+  const YAML::Node n = required(key);
+  checkScalar(n, file_, childPath(key), Expected::boolean);
   try {
     return n.as<bool>();
   } catch (const YAML::Exception&) {
@@ -360,8 +467,8 @@ bool YamlMap::boolean(const std::string& key, bool fallback) const {
   }
 }
 std::string YamlMap::string(const std::string& key) const {
-  const YAML::Node n = require(key);
-  if (!n.IsScalar()) failAt(key, "expected a string");
+  const YAML::Node n = required(key);
+  checkScalar(n, file_, childPath(key), Expected::text);
   return n.Scalar();
 }
 std::string YamlMap::string(const std::string& key, const std::string& fallback) const {
@@ -382,7 +489,7 @@ std::string YamlMap::choice(const std::string& key, const std::vector<std::strin
   return has(key) ? choice(key, choices) : fallback;
 }
 std::vector<double> YamlMap::numbers(const std::string& key) const {
-  const YAML::Node n = require(key);
+  const YAML::Node n = required(key);
   std::vector<double> out;
   if (n.IsScalar()) return {asNumber(n, file_, childPath(key))};
   if (!n.IsSequence()) failAt(key, "expected a number or a list of numbers");
@@ -391,7 +498,7 @@ std::vector<double> YamlMap::numbers(const std::string& key) const {
   return out;
 }
 std::vector<long> YamlMap::integers(const std::string& key, IntRange range) const {
-  const YAML::Node n = require(key);
+  const YAML::Node n = required(key);
   if (n.IsScalar()) return {asInteger(n, file_, childPath(key), range)};
   if (!n.IsSequence()) failAt(key, "expected an integer or a list of integers");
   std::vector<long> out;
@@ -408,13 +515,12 @@ std::array<double, 3> YamlMap::vec3(const std::string& key, std::array<double, 3
   return has(key) ? vec3(key) : fallback;
 }
 std::vector<std::string> YamlMap::strings(const std::string& key) const {
-  const YAML::Node n = require(key);
-  if (n.IsScalar()) return {n.Scalar()};
+  const YAML::Node n = required(key);
+  if (n.IsScalar()) return {string(key)};
   if (!n.IsSequence()) failAt(key, "expected a string or a list of strings");
   std::vector<std::string> out;
   for (std::size_t i = 0; i < n.size(); ++i) {
-    if (!n[i].IsScalar())
-      throw InputError(locate(file_, n[i], fmt::format("{}[{}]", childPath(key), i)) + ": expected a string");
+    checkScalar(n[i], file_, fmt::format("{}[{}]", childPath(key), i), Expected::text);
     out.push_back(n[i].Scalar());
   }
   return out;
@@ -496,6 +602,9 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
   } catch (const InputError& e) {
     throw InputError(fmt::format("--set '{}': the value is not valid YAML: {}", assignment, e.what()));
   }
+  if (isNullValue(value))
+    throw InputError(fmt::format("--set '{}': no value after '=' (empty or null); give one, e.g. {}=1",
+                                 assignment, assignment.substr(0, eq)));
   std::vector<std::string> parts;
   std::size_t start = 0;
   while (true) {

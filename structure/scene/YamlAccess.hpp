@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "structure/model/PositiveValue.hpp"
 #include "structure/scene/NearestName.hpp"
 
 namespace fsi::structure {
@@ -46,6 +47,9 @@ class YamlMap {
   bool has(const std::string& key) const;
   double number(const std::string& key) const;
   double number(const std::string& key, double fallback) const;
+  /// A number > 0 under the rule of isPositiveNormal (a physical quantity).
+  double positive(const std::string& key) const;
+  double positive(const std::string& key, double fallback) const;
   /// An integer (written as one, or as an integral number such as 1e3) inside `range`.
   long integer(const std::string& key, IntRange range = {}) const;
   long integer(const std::string& key, long fallback, IntRange range) const;
@@ -87,8 +91,14 @@ class YamlMap {
   mutable std::set<std::string> used_;
 };
 
-/// Reads a finite number from a scalar node with a located error.
+/// True for a value that is absent, empty, `~`, `null` or tagged `!!null`: never a valid value.
+bool isNullValue(const YAML::Node& n);
+
+/// Reads a finite number from a scalar node with a located error. A quoted or `!!str` scalar is text, not a
+/// number; null is no value (docs/SCENES.md, "Errors").
 double asNumber(const YAML::Node& n, const std::string& file, const std::string& path);
+/// A number under the rule of isPositiveNormal, with a located error.
+double asPositive(const YAML::Node& n, const std::string& file, const std::string& path);
 
 /// Reads an integer inside `range` from a scalar node with a located error.
 long asInteger(const YAML::Node& n, const std::string& file, const std::string& path, IntRange range = {});

@@ -174,6 +174,41 @@ dr dr-soft.yaml "[{nodes: sheet/boundary, fix: all}]" 1.0e3 "pressure: {triangle
 expect 3 "above 100 %, which no fabric or line survives; check the units" -- \
   "$fsi" run dr-soft.yaml --out dr-soft --quiet
 
+# Issue 35, items 9 and 11: one rule for positive values, YAML types honoured, null located, the parafoil
+# generator's unset keys distinct from 0. Each of these ran (exit 0 or 3) or lost its location before.
+expect 2 "good.yaml:1:1: materials.film.thickness: must be > 0 and at least 2.2e-308" -- \
+  "$fsi" run good.yaml --out o --set materials.film.thickness=1.0e-320
+expect 2 "materials.film.young: expected a number, got the string '1e8' (tagged !!str)" -- \
+  "$fsi" run good.yaml --out o --set 'materials.film.young=!!str 1e8'
+expect 2 "materials.film.young: expected a number, got the string '1e8' (quoted)" -- \
+  "$fsi" run good.yaml --out o --set 'materials.film.young="1e8"'
+expect 2 "constraints[0].fix: the tag '!foo' is not supported" -- \
+  "$fsi" run good.yaml --out o --set 'constraints.0.fix=!foo all'
+expect 2 "--set 'time.end=': no value after '='" -- "$fsi" run good.yaml --out o --set time.end=
+scene null-entry.yaml ""
+sed -i 's/^  - {nodes: sheet\/boundary, fix: all}$/&\n  - null/' null-entry.yaml
+expect 2 "null-entry.yaml:10:5: constraints[1]: a list entry has no value (empty or null)" -- \
+  "$fsi" run null-entry.yaml --out o
+wing() {  # wing FILE EXTRA: a small parafoil generator entry plus EXTRA keys
+  printf '%s\n' "materials:" \
+    "  fabric: {type: membrane, young: 1.3e9, poisson: 0.3, thickness: 7.6e-5, density: 530}" \
+    "  line: {type: cable, young: 4.3e10, area: 3.0e-6, density: 906}" \
+    "meshes:" "  wing:" \
+    "    generator: {type: parafoil, cells: 4, chordwise_points: 12, span_divisions: 1, brake_points: 2, $2}" \
+    "    material: fabric" "    cable_material: line" \
+    "constraints:" "  - {nodes: wing/confluence, fix: all}" "time: {end: 1.0e-4}" > "$1"
+}
+wing tip0.yaml "tip_chord: 0"
+expect 2 "tip0.yaml:6:16: meshes.wing.generator: parafoil generator: parameter 'tip_chord' is 0; valid: (0, 3]" -- \
+  "$fsi" run tip0.yaml --out o
+wing bulge.yaml "bulge: 0.1"
+expect 2 "parameter 'bulge' is 0.1 but has no effect with span_divisions 1" -- "$fsi" run bulge.yaml --out o
+wing riser.yaml "riser_length: 1e308"
+expect 2 "parameter 'riser_length' is 1e+308; valid: (0, 30]" -- "$fsi" run riser.yaml --out o
+wing naca.yaml "section: NACA -4415"
+expect 2 "naca.yaml:6:110: meshes.wing.generator.section: 'NACA -4415' is not a supported NACA section" -- \
+  "$fsi" run naca.yaml --out o
+
 # A good run: exit 0 and a readable summary.
 expect 0 "probe  centre" -- "$fsi" run good.yaml --out good-out
 if [[ ! -s good-out/summary.json ]]; then

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Fuzz test of the fsi command (ctest label `fuzz`).
 
-Feeds seeded, reproducible mutations of three kinds of input to build/bin/fsi and checks how it ends:
+Feeds seeded, reproducible mutations of four kinds of input to build/bin/fsi and checks how it ends:
   scenes    cases/structure/*/scene.yaml (shrunk to a few elements and steps) and seeds/scenes/*.yaml,
             mutated as text, as YAML trees and through --set; run with `fsi run SCENE --out DIR`.
   gmsh      seeds/gmsh/*.msh (MSH 2.2 and 4.1, ASCII and binary, made by seeds/make_seeds.sh), mutated
@@ -9,6 +9,9 @@ Feeds seeded, reproducible mutations of three kinds of input to build/bin/fsi an
             `fsi run` of seeds/scenes/gmsh-sheet.yaml with the mutant as its mesh.
   openfoam  seeds/openfoam/constant/polyMesh (blockMesh of a 3x3x1 box), mutated counts, startFace/nFaces,
             labels, numbers, brackets; read by `fsi map-check CASE:top REF`.
+  parafoil  seeds/parafoil/*.yaml (a small canopy, every generator key given): the generator's keys set to
+            0, negative, huge, subnormal, nan, wrong types, quoted/tagged numbers, null, bad NACA names,
+            deleted, or set to plausible values that interact, in the file or by --set; run with `fsi run`.
 plus the unmodified seeds (each must run cleanly) and, when tests/corpus exists, every file in it (the
 crashers other work collected: tests/corpus/gmsh/*, tests/corpus/openfoam/*).
 
@@ -68,7 +71,7 @@ import mutate  # noqa: E402
 HERE = Path(__file__).resolve().parent
 SOURCE = HERE.parent.parent
 SEEDS = HERE / "seeds"
-KINDS = ["seeds", "scenes", "gmsh", "openfoam"]
+KINDS = ["seeds", "scenes", "gmsh", "openfoam", "parafoil"]
 MEMORY_LIMIT = 2 << 30
 FILE_SIZE_LIMIT = 512 << 20
 STDBUF = shutil.which("stdbuf")
@@ -121,7 +124,9 @@ def load_seeds():
     gmsh = [(f"tests/fuzz/seeds/gmsh/{p.name}", p.read_bytes()) for p in sorted((SEEDS / "gmsh").glob("*.msh"))]
     poly = SEEDS / "openfoam" / "constant" / "polyMesh"
     foam = [("tests/fuzz/seeds/openfoam", {n: (poly / n).read_bytes() for n in mutate.POLYMESH_FILES})]
-    return {"scenes": scenes, "gmsh": gmsh, "openfoam": foam}
+    parafoil = [(f"tests/fuzz/seeds/parafoil/{p.name}", p.read_bytes())
+                for p in sorted((SEEDS / "parafoil").glob("*.yaml"))]
+    return {"scenes": scenes, "gmsh": gmsh, "openfoam": foam, "parafoil": parafoil}
 
 
 SHEET_SCENE = "gmsh-sheet.yaml"  # the seed scene that reads mesh.msh next to it
@@ -163,6 +168,15 @@ def build_case(kind, index, seed, seeds, work, fsi):
         case.mode = "run"
         case.text_inputs = ["scene.yaml"]
         case.input_names = ["scene.yaml", "mesh.msh"]
+    elif kind == "parafoil":
+        name, text = mutate.pick(rng, seeds["parafoil"])
+        text, case.mutations, case.sets = mutate.mutate_parafoil(rng, text)
+        case.seed_name = name
+        (case.dir / "scene.yaml").write_bytes(text)
+        case.cmd = [fsi, "run", "scene.yaml", "--out", "out"] + [f"--set={s}" for s in case.sets]
+        case.mode = "run"
+        case.text_inputs = ["scene.yaml"]
+        case.input_names = ["scene.yaml"]
     elif kind == "gmsh":
         name, data = mutate.pick(rng, seeds["gmsh"])
         data, case.mutations = mutate.mutate_gmsh(rng, data)
@@ -206,7 +220,7 @@ def build_case(kind, index, seed, seeds, work, fsi):
 def unmodified_cases(seeds, work, fsi):
     """Every seed as it is: valid inputs that must run to a clean end (exit 0)."""
     cases = []
-    for i, (name, text) in enumerate(seeds["scenes"]):
+    for i, (name, text) in enumerate(seeds["scenes"] + seeds["parafoil"]):
         case = Case("seed", i, 0, work / "cases" / f"seed-scene-{i:02d}")
         shutil.rmtree(case.dir, ignore_errors=True)
         case.dir.mkdir(parents=True)
@@ -466,6 +480,53 @@ def _cites_line(err, name):
 PROGRESS_RE = re.compile(r"^step\s+(\d+)\s+t\s+(\S+?)/", re.M)
 
 
+# The parafoil generator's rules (docs/PARAFOIL.md, issue 35) as an oracle on what an accepted scene gave it.
+PARAFOIL_NUMBERS = {"span", "root_chord", "tip_chord", "arc_radius", "incidence", "twist", "thickness_scale",
+                    "bulge", "cascade_fraction", "line_length", "rigging_angle", "toggle_fraction",
+                    "brake_slack", "riser_length"}
+PARAFOIL_INTEGERS = {"cells", "chordwise_points", "span_divisions", "cascade", "line_elements", "brake_points"}
+PARAFOIL_POSITIVE = {"span", "root_chord", "tip_chord", "thickness_scale", "line_length", "riser_length"}
+PLAIN_NUMBER_RE = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+NACA_RE = re.compile(r"(?:naca *)?\d{4,5}", re.I)
+
+
+def parafoil_violations(given):
+    """What an accepted parafoil entry must not have: a non-number where a number belongs, a value out of
+    its physical range, unset confused with 0, a value that cannot take effect, a malformed NACA name."""
+    bad, num = [], {}
+    for key, raw in given.items():
+        if key in PARAFOIL_NUMBERS | PARAFOIL_INTEGERS:
+            tag, _, rest = raw.partition(" ")
+            if tag in ("!!float", "!!int"):  # the core tags of numbers are honoured
+                raw = rest.strip()
+                if tag == "!!int" and PLAIN_NUMBER_RE.fullmatch(raw) and not float(raw).is_integer():
+                    bad.append(f"{key}: !!int {raw} is not an integer")
+                    continue
+            if not PLAIN_NUMBER_RE.fullmatch(raw):
+                bad.append(f"{key}: {raw} is not a plain number")
+                continue
+            num[key] = float(raw)
+            if not math.isfinite(num[key]) or (key in PARAFOIL_POSITIVE and not num[key] >= 2.2250738585072014e-308):
+                bad.append(f"{key}: {raw} out of range")
+    span = num.get("span", 3.0)
+    for key, limit in (("span", 1000.0), ("root_chord", span), ("tip_chord", span), ("line_length", 10.0),
+                       ("riser_length", 10.0 * span)):
+        if key in num and num[key] > limit:
+            bad.append(f"{key}: {given[key]} above {limit:g}")
+    if num.get("bulge", 0) > 0 and num.get("span_divisions", 2) < 2:
+        bad.append("bulge > 0 with span_divisions 1 (no effect)")
+    if "cascade_fraction" in given and num.get("cascade", 2) == 1:
+        bad.append("cascade_fraction with cascade 1 (no effect)")
+    if num.get("brake_points", 3) == 0 and ("toggle_fraction" in given or num.get("brake_slack", 0) > 0):
+        bad.append("toggle_fraction or brake_slack with brake_points 0 (no effect)")
+    if "section" in given and not given["section"].startswith("{") and \
+            not NACA_RE.fullmatch(given["section"].strip("'\"")):
+        bad.append(f"section: {given['section']} is not NACA and 4 or 5 digits")
+    if "row_trim" in given and "rows" not in given and given["row_trim"].count(",") != 3:
+        bad.append(f"row_trim: {given['row_trim']} does not have one entry per row")
+    return bad
+
+
 def judge(case, rc, timed_out, stdout, stderr):
     """Returns (outcome, failure classes). outcome: 'exit N', 'signal NAME', 'timeout'."""
     fails = []
@@ -507,7 +568,7 @@ def judge(case, rc, timed_out, stdout, stderr):
             if (named and not any(_cites_line(err, n) for n in named)) or (not named and case.kind == "openfoam"):
                 fails.append("exit 2: message has no line number")
     tree = None
-    if case.mode == "run" and case.kind in ("scenes", "seed"):
+    if case.mode == "run" and case.kind in ("scenes", "seed", "parafoil"):
         tree, dups, utf8, wide = scene_facts(case)
         if rc in (0, 3, 4):  # the scene was accepted
             if dups:
@@ -518,6 +579,11 @@ def judge(case, rc, timed_out, stdout, stderr):
             if wide:
                 fails.append("mesh size beyond int32 accepted")
                 case.detail = ", ".join(wide[:3])
+    if case.kind == "parafoil" and rc in (0, 3, 4):
+        bad = parafoil_violations(mutate.parafoil_given((case.dir / "scene.yaml").read_bytes(), case.sets))
+        if bad:
+            fails.append("parafoil: invalid value accepted")
+            case.detail = "; ".join(bad[:3])
     if rc == 0 and case.mode == "run":
         try:
             summary = _strict_json((case.dir / "out" / "summary.json").read_text())
@@ -615,7 +681,7 @@ def main():
     ap.add_argument("--count", type=int, default=int(os.environ.get("FSI_FUZZ_COUNT", 150)),
                     help="inputs per kind (default 150, or FSI_FUZZ_COUNT)")
     ap.add_argument("--kinds", default=",".join(KINDS),
-                    help="comma-separated: seeds (the unmodified seeds), scenes, gmsh, openfoam (each with its "
+                    help="comma-separated: seeds (the unmodified seeds), scenes, gmsh, openfoam, parafoil (each with its "
                          "part of the corpus)")
     ap.add_argument("--timeout", type=float, default=10.0, help="seconds per run")
     ap.add_argument("--jobs", type=int, default=int(os.environ.get("FSI_FUZZ_JOBS", 2)))

@@ -661,3 +661,119 @@ def mutate_foam(rng, files):
         files[name], d = f(rng, files[name])
         descs.append(f"{name}: {d}")
     return descs
+
+
+# ---------------------------------------------------------------------------------------------------------
+# The parafoil generator's keys (the fuzz family `parafoil`, issue 35): its seed has one generator entry as
+# a flow mapping on one line; each mutation changes, deletes or adds keys of that entry, or overrides one
+# with --set. Values: 0, negative, huge, subnormal, nan, wrong types, quoted and tagged numbers, null, bad
+# NACA designations; and plausible values that interact (bulge with span_divisions 1, cascade 1, no brakes).
+
+PARAFOIL_GENERATOR_RE = re.compile(rb"^(?P<indent>[ \t]*generator:[ \t]*)(?P<map>\{type: parafoil.*\})[ \t]*$", re.M)
+
+# Every key of the generator (structure/parafoil/ParafoilScene.cpp) with plausible values to add.
+PARAFOIL_VALUES = {
+    "span": ["3.0", "1.0", "8.0", "0.5"],
+    "root_chord": ["1.0", "0.5", "2.0"],
+    "tip_chord": ["0.6", "1.0", "1.5"],
+    "cells": ["1", "2", "3", "6"],
+    "arc_radius": ["0", "3.0", "1.0", "100"],
+    "incidence": ["0", "10", "-5"],
+    "twist": ["0", "5", "-10"],
+    "section": ["NACA 2412", "0012", "naca23012", "NACA 23112", "NACA 0001"],
+    "thickness_scale": ["0.5", "2.0", "5"],
+    "intake": ["closed", "{from: 0.0, to: 0.1}", "{from: 0.02, to: 0.04}"],
+    "chordwise_points": ["4", "6", "20"],
+    "span_divisions": ["1", "3"],
+    "chordwise_spacing": ["cosine", "half_cosine"],
+    "bulge": ["0", "0.1", "0.5"],
+    "ribs": ["all", "alternate"],
+    "rows": ["[0.2, 0.5]", "[0.5]", "[0.1, 0.2, 0.3, 0.4, 0.5]"],
+    "cascade": ["1", "2", "3"],
+    "cascade_fraction": ["0.1", "0.9"],
+    "line_length": ["0.5", "2.0", "10"],
+    "rigging_angle": ["0", "20", "-10"],
+    "line_elements": ["1", "3"],
+    "row_trim": ["[0, 0, 0, 0]", "[-0.1, 0, 0.1, 0.2]", "[0.1, 0.2]"],
+    "brake_points": ["0", "1", "2"],
+    "toggle_fraction": ["0", "0.5"],
+    "brake_slack": ["0", "0.1"],
+    "trailing_edge_tape": ["true", "false"],
+    "riser_length": ["0.1", "1.0", "30"],
+}
+PARAFOIL_SPECIAL = [
+    "0", "-1", "-0.5", "1e308", "-1e308", "1e30", "1e400", "1e-320", "4.9e-324", ".nan", ".inf", "-.inf",
+    "2147483648", "9223372036854775808", "1e9", "abc", "'1.5'", '"2"', "!!str 3", "!!float 2", "!!int 1.5",
+    "!!null", "null", "~", "''", "[]", "[1, 2]", "{a: 1}", "true", "0x10", "1_000", "!foo 1",
+    "NACA -4415", "NACA 44-15", "NACA 4 415", "NACA 44155", "NACA 9999", "'NACA 4415'",
+]
+
+
+def _parafoil_entries(text):
+    """The generator's entries as [(key, raw value text)], splitting the flow mapping at top-level commas."""
+    inner = text.strip()[1:-1]
+    entries, depth, start = [], 0, 0
+    for i, c in enumerate(inner + ","):
+        if c in "[{":
+            depth += 1
+        elif c in "]}":
+            depth -= 1
+        elif c == "," and depth == 0:
+            part = inner[start:i].strip()
+            start = i + 1
+            if part:
+                k, _, v = part.partition(":")
+                entries.append((k.strip(), v.strip()))
+    return entries
+
+
+def mutate_parafoil(rng, data):
+    """1-3 mutations of the parafoil generator's keys; returns (bytes, descriptions, --set overrides)."""
+    m = PARAFOIL_GENERATOR_RE.search(data)
+    entries = _parafoil_entries(m.group("map").decode())
+    desc, sets = [], []
+    keys = list(PARAFOIL_VALUES)
+    for _ in range(1 + int(rng.random() < 0.5) + int(rng.random() < 0.25)):
+        present = [k for k, _ in entries if k != "type"]
+        r = rng.random()
+        if r < 0.45:  # an edge value for a key (present or not)
+            key = pick(rng, present if present and rng.random() < 0.8 else keys)
+            value = pick(rng, PARAFOIL_SPECIAL)
+            entries = [(k, v) for k, v in entries if k != key] + [(key, value)]
+            desc.append(f"parafoil: {key}: {value}")
+        elif r < 0.6 and present:  # a key deleted: its default (or "unset") applies
+            key = pick(rng, present)
+            entries = [(k, v) for k, v in entries if k != key]
+            desc.append(f"parafoil: {key} deleted")
+        elif r < 0.85:  # a plausible value: combinations the generator must accept or refuse clearly
+            key = pick(rng, keys)
+            value = pick(rng, PARAFOIL_VALUES[key])
+            entries = [(k, v) for k, v in entries if k != key] + [(key, value)]
+            desc.append(f"parafoil: {key}: {value}")
+        elif r < 0.95:  # the same through --set (also the empty value)
+            key = pick(rng, keys)
+            value = pick(rng, PARAFOIL_SPECIAL + PARAFOIL_VALUES[key] + [""])
+            sets.append(f"meshes.wing.generator.{key}={value}")
+            desc.append(f"--set meshes.wing.generator.{key}={value}")
+        else:  # a key the generator does not have, or the entry's type changed
+            if rng.random() < 0.5:
+                entries.append(("spn", "3.0"))
+                desc.append("parafoil: unknown key spn")
+            else:
+                entries = [(k, pick(rng, ["parafol", "''", "7", "[parafoil]"]) if k == "type" else v)
+                           for k, v in entries]
+                desc.append("parafoil: type changed")
+    body = "{" + ", ".join(f"{k}: {v} " for k, v in entries) + "}"
+    out = data[:m.start("map")] + body.encode() + data[m.end("map"):]
+    return out, desc, sets
+
+
+def parafoil_given(data, sets):
+    """{key: raw value text} of the generator entry as fsi sees it: the file's entry, then the --set values."""
+    m = PARAFOIL_GENERATOR_RE.search(data)
+    given = dict(_parafoil_entries(m.group("map").decode())) if m else {}
+    for s in sets:
+        path, _, value = s.partition("=")
+        if path.startswith("meshes.wing.generator."):
+            given[path[len("meshes.wing.generator."):]] = value.strip()
+    return given

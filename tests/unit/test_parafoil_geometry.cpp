@@ -393,9 +393,9 @@ TEST(ParafoilGeometry, RowTrimLengthensEachRowsLineIntoTheConfluenceByItsTrim) {
         for (int j = first; j <= e; ++j) {
           const double r0 = m.lineRestLength[std::size_t(j)];
           rest += r0 > 0 ? r0 : length(m.lines[std::size_t(j)][0], m.lines[std::size_t(j)][1]);
-          if (q.rowTrim[r] != 0.0) trimmed.insert(j);
+          if ((*q.rowTrim)[r] != 0.0) trimmed.insert(j);
         }
-        EXPECT_NEAR(rest, length(start, confluence) + q.rowTrim[r], 1e-12)
+        EXPECT_NEAR(rest, length(start, confluence) + (*q.rowTrim)[r], 1e-12)
             << "row " << char('A' + r) << ", cascade " << cascade;
         ++lines;
       }
@@ -580,4 +580,70 @@ TEST(ParafoilScene, MisspelledKeyAndBadValueAreLocated) {
   const std::string rows = withChange("riser_length: 0.4", "rows: [0.5, 0.2]");
   EXPECT_NE(rows.find("'rows[1]'"), std::string::npos) << rows;
   EXPECT_NE(rows.find("wing.yaml"), std::string::npos) << rows;
+}
+
+// Issue 35, item 9: unset is never a number, a value that cannot take effect is an error, lengths have
+// physical bounds, NACA designations are 4 or 5 digits in one piece. Every case below was accepted before.
+TEST(ParafoilScene, UnsetIsNotZeroAndIneffectiveOrAbsurdValuesAreRefused) {
+  auto withChange = [](const std::string& from, const std::string& to) {
+    std::string t = kParafoilScene;
+    t.replace(t.find(from), from.size(), to);
+    try {
+      fsi::structure::loadSceneFromString(t, "wing.yaml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  struct Case {
+    const char *from, *to, *expected;
+  };
+  const Case cases[] = {
+      // tip_chord 0 built the untapered wing (0 was "unset").
+      {"riser_length: 0.4", "tip_chord: 0", "parameter 'tip_chord' is 0; valid: (0, 3]"},
+      // riser_length 0 meant "no riser"; 1e308 made a node at -1e308.
+      {"riser_length: 0.4", "riser_length: 0", "parameter 'riser_length' is 0; valid: (0, 30]"},
+      {"riser_length: 0.4", "riser_length: 1e308", "parameter 'riser_length' is 1e+308; valid: (0, 30]"},
+      {"riser_length: 0.4", "line_length: 1.0e300", "parameter 'line_length' is 1e+300; valid: (0, 10]"},
+      {"cells: 4", "cells: 4, span: 1.0e300", "parameter 'span' is 1e+300; valid: (0, 1000]"},
+      {"cells: 4", "cells: 4, span: 1.0e-320", "parameter 'span'"},
+      {"cells: 4", "cells: 4, root_chord: 50", "parameter 'root_chord' is 50; valid: (0, 3]"},
+      // bulge with span_divisions 1 gave the same mesh as without.
+      {"riser_length: 0.4", "bulge: 0.1", "parameter 'bulge' is 0.1 but has no effect with span_divisions 1"},
+      {"riser_length: 0.4", "cascade: 1, cascade_fraction: 0.5",
+       "cascade_fraction: has no effect with cascade 1"},
+      {"brake_points: 2", "brake_points: 0, toggle_fraction: 0.2",
+       "toggle_fraction: has no effect with brake_points 0"},
+      {"brake_points: 2", "brake_points: 0, brake_slack: 0.1",
+       "parameter 'brake_slack' is 0.1 but has no effect with brake_points 0"},
+      // An empty row_trim meant "none" whatever the rows.
+      {"riser_length: 0.4", "row_trim: []", "parameter 'row_trim' has 0 entries for 4 rows"},
+      // Read as NACA 4415 (2412 here) before.
+      {"NACA 2412", "NACA 24-12", "wing.yaml:6:"},
+      {"NACA 2412", "NACA -2412", "'NACA -2412' is not a supported NACA section"},
+      {"NACA 2412", "NACA 2 412", "'NACA 2 412' is not a supported NACA section"},
+      {"NACA 2412", "NACA_2412", "'NACA_2412' is not a supported NACA section"},
+  };
+  for (const Case& c : cases) {
+    const std::string e = withChange(c.from, c.to);
+    EXPECT_NE(e.find(c.expected), std::string::npos) << c.to << ": " << e;
+    EXPECT_TRUE(e.find("wing.yaml:6:") != std::string::npos || e.find("wing.yaml:7:") != std::string::npos)
+        << c.to << ": " << e;  // located: the generator entry or the key
+  }
+  // The accepted spellings still read, and an unset tip chord is the root chord.
+  for (const char* name : {"naca2412", "2412", "NACA  2412", "NACA 23012"})
+    EXPECT_EQ(withChange("NACA 2412", name), "no error") << name;
+  EXPECT_EQ(withChange("riser_length: 0.4", "tip_chord: 1.0"), "no error");
+}
+
+TEST(ParafoilGeometry, UnsetTipChordIsTheRootChordAndZeroIsRefused) {
+  ParafoilParams q = untwisted(12, 1);
+  const MeshData untapered = buildParafoil(q);
+  q.tipChord = q.rootChord;
+  EXPECT_EQ(buildParafoil(q).points, untapered.points);
+  q.tipChord = 0.0;
+  EXPECT_THROW(buildParafoil(q), InputError);
+  q.tipChord.reset();
+  q.riserLength = 0.0;
+  EXPECT_THROW(buildParafoil(q), InputError);
 }

@@ -99,6 +99,14 @@ TEST(ReaderCorpus, OpenFoamFilesGiveLocatedErrors) {
       {"point_1e400", "points:13:", "'1e400' is out of range"},
       {"face_label_overflow", "faces:16:", "'18446744073709551623' is out of range"},
       {"point_nan", "points:16:", "'nan' is not a finite number"},
+      // Issue 35, item 10: read as if valid (exit 0, "all points mapped") before. Every patch is checked,
+      // not only the one asked for ('walls' here).
+      {"boundary_duplicate_patch", "boundary:13:", "patch 'inlet' is defined twice (first at line 12)"},
+      {"boundary_startface_internal",
+       "boundary:12:", "patch 'inlet' starts at face 0, inside the 1 internal faces"},
+      {"boundary_patch_overlap",
+       "boundary:13:", "patch 'outlet' starts at face 1, but patch 'inlet' ends at face 2"},
+      {"boundary_other_patch_past_end", "boundary:13:", "patch 'outlet' has 1 faces from face 11"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.dir);

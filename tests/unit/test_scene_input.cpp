@@ -308,3 +308,65 @@ TEST(SceneInput, SetIntoAScalarOrPastAListIsAnInputError) {
   e = errorOf(drumScene(kTime), {"time={end: 1, end: 2}"});
   EXPECT_TRUE(has(e, "time.end: duplicate key 'end'")) << e;
 }
+
+// ---------------------------------------------------------------- one rule for positive values, YAML types
+
+TEST(SceneInput, EveryPositiveValueRefusesSubnormals) {
+  // thickness 1.0e-320 passed "> 0" while density 1.0e-320 was refused; the run then died as "unstable"
+  // (issue 35, item 11). One rule (isPositiveNormal) for every quantity that must be > 0.
+  for (const std::string set : {"materials.film.thickness=1.0e-320", "materials.film.young=4.9e-324",
+                                "time.max_dt=1.0e-320", "time.energy_tolerance=1.0e-320"}) {
+    const std::string e = errorOf(drumScene(kTime), {set});
+    const std::string key = set.substr(0, set.find('='));
+    EXPECT_TRUE(has(e, key + ": must be > 0 and at least 2.2e-308")) << set << ": " << e;
+  }
+  EXPECT_EQ(errorOf(drumScene(kTime), {"materials.film.thickness=1.0e-300"}), "");
+}
+
+TEST(SceneInput, QuotedOrStrTaggedNumbersAreRefused) {
+  // "1e8" and !!str 1e8 are strings in YAML; they were read as numbers (issue 35, item 11).
+  std::string e = errorOf(drumScene(kTime), {"materials.film.young=\"1.0e8\""});
+  EXPECT_TRUE(
+      has(e, "case.yaml:1:1: materials.film.young: expected a number, got the string '1.0e8' (quoted)"))
+      << e;
+  e = errorOf(drumScene(kTime), {"materials.film.young=!!str 1.0e8"});
+  EXPECT_TRUE(has(e, "materials.film.young: expected a number, got the string '1.0e8' (tagged !!str)")) << e;
+  e = errorOf(drumScene("time: {end: '0.001'}\n"));
+  EXPECT_TRUE(has(e, "case.yaml:9:13: time.end: expected a number")) << e;
+  e = errorOf(drumScene(kTime), {"meshes.sheet.generator.divisions=[8, \"8\"]"});
+  EXPECT_TRUE(has(e, "meshes.sheet.generator.divisions[1]: expected an integer, got the string '8'")) << e;
+  e = errorOf(drumScene(kTime), {"materials.film.wrinkling=\"false\""});
+  EXPECT_TRUE(has(e, "materials.film.wrinkling: expected true or false, got the string 'false'")) << e;
+  // The core tags that match the key are honoured; a quoted name is still a name.
+  EXPECT_EQ(
+      errorOf(drumScene(kTime), {"materials.film.young=!!float 1.0e8", "meshes.sheet.material=\"film\""}),
+      "");
+}
+
+TEST(SceneInput, TagsOtherThanTheMatchingCoreOnesAreRefused) {
+  std::string e = errorOf(drumScene(kTime), {"constraints.0.fix=!foo all"});
+  EXPECT_TRUE(has(e, "constraints[0].fix: the tag '!foo' is not supported")) << e;
+  e = errorOf(drumScene(kTime), {"materials.film.young=!!int 1.5"});
+  EXPECT_TRUE(has(e, "materials.film.young: '1.5' is tagged !!int but is not an integer")) << e;
+  e = errorOf(drumScene("time: {end: !!null 5}\n"));
+  EXPECT_TRUE(has(e, "case.yaml:9:13: time.end: '5' is tagged !!null, which is no value")) << e;
+  e = errorOf(drumScene("time: {end: !!binary AAAA}\n"));
+  EXPECT_TRUE(has(e, "case.yaml:9:13: time.end: the tag '!!binary' is not supported")) << e;
+  e = errorOf(drumScene(kTime), {"title=!!int 5"});
+  EXPECT_TRUE(has(e, "title: expected a string, but '5' is tagged !!int")) << e;
+}
+
+TEST(SceneInput, NullValuesAreLocated) {
+  // `thickness: !!null` is no value (it was read as an empty number); `--set key=` named neither the --set
+  // nor a line; a null list entry became an empty constraint or selector without a place in the file.
+  std::string e = errorOf(drumScene(kTime), {"time.end="});
+  EXPECT_TRUE(has(e, "--set 'time.end=': no value after '='")) << e;
+  e = errorOf(drumScene(kTime), {"time.end=~"});
+  EXPECT_TRUE(has(e, "--set 'time.end=~': no value after '='")) << e;
+  e = errorOf(drumScene("time: {end: !!null }\n"));
+  EXPECT_TRUE(has(e, "case.yaml:9:8: time.end: no value given")) << e;
+  e = errorOf(drumScene("  - null\n" + kTime));
+  EXPECT_TRUE(has(e, "case.yaml:9:5: constraints[1]: a list entry has no value (empty or null)")) << e;
+  e = errorOf(drumScene("  - nodes:\n      - sheet/boundary\n      - null\n    fix: all\n" + kTime));
+  EXPECT_TRUE(has(e, "case.yaml:11:9: constraints[1].nodes[1]: a list entry has no value")) << e;
+}

@@ -14,10 +14,12 @@ const std::vector<std::string> kKeys{"triangles", "rigidity"};
 void build(const YamlMap& b, EffectContext& ctx) {
   const auto tris = ctx.sets.triangles(b.required("triangles"), b.childPath("triangles"));
   const double D = b.number("rigidity");
-  if (!(D > 0) || !std::isfinite(D))
-    b.failAt("rigidity", fmt::format("is {}; valid: > 0 [N·m] (a woven parachute fabric: about 1e-6 to 1e-4; "
-                                     "an isotropic sheet: E t³ / 12(1 − ν²))",
-                                     D));
+  if (!isPositiveNormal(D))
+    b.failAt("rigidity",
+             fmt::format(
+                 "is {}; valid: > 0, at least 2.2e-308 [N·m] (a woven parachute fabric: about 1e-6 to 1e-4; "
+                 "an isotropic sheet: E t³ / 12(1 − ν²))",
+                 D));
   b.finish(kKeys);
   std::vector<int> conn;
   for (int e : tris)

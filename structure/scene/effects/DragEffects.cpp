@@ -17,8 +17,8 @@ AirStream readAir(const YamlMap& e) {
   AirStream a;
   a.wind = e.vec3("wind");
   a.density = e.number("density", 1.225);
-  if (!(a.density > 0))
-    e.failAt("density", fmt::format("is {}; valid: > 0 (air at sea level: 1.225)", a.density));
+  if (!isPositiveNormal(a.density))
+    e.failAt("density", fmt::format("is {}; {} (air at sea level: 1.225)", a.density, kPositiveRule));
   a.function = readTimeFunction(e, "function");
   return a;
 }
@@ -30,7 +30,7 @@ std::string labelOf(const YamlMap& e, const std::string& key) {
 void buildLine(const YamlMap& e, EffectContext& ctx) {
   const auto lines = ctx.sets.lines(e.required("lines"), e.childPath("lines"));
   const double d = e.number("diameter");
-  if (!(d > 0)) e.failAt("diameter", fmt::format("is {}; valid: > 0 [m]", d));
+  if (!isPositiveNormal(d)) e.failAt("diameter", fmt::format("is {}; {} [m]", d, kPositiveRule));
   const double cd = e.number("cd", 1.0);
   if (!(cd >= 0)) e.failAt("cd", fmt::format("is {}; valid: >= 0 (a cylinder in cross-flow: about 1)", cd));
   const AirStream air = readAir(e);

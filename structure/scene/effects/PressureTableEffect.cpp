@@ -38,7 +38,7 @@ void build(const YamlMap& e, EffectContext& ctx) {
   const auto axis = e.vec3("axis", {1, 0, 0});
   if (!(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2] > 0)) e.failAt("axis", "must not be zero");
   const double chord = e.number("chord");
-  if (!(chord > 0)) e.failAt("chord", fmt::format("is {}; valid: > 0 [m]", chord));
+  if (!isPositiveNormal(chord)) e.failAt("chord", fmt::format("is {}; {} [m]", chord, kPositiveRule));
   const TimeFunction fn = readTimeFunction(e, "function");
   const bool follower = e.boolean("follower", true);
   e.finish(kKeys);

@@ -1,5 +1,5 @@
 // fsi: the command-line front end.
-//   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet]
+//   fsi run SCENE.yaml --out DIR [--set key.path=value ...] [--quiet] [--start-from RUN | STATE.h5]
 //   fsi validate CASE_DIR [--out DIR]   runs the checks in CASE_DIR/reference.yaml against their references
 //   fsi map-check SRC DST [--tolerance T] [--json FILE] [--set key=value]
 //                          checks the projections between two interface meshes (Gmsh file, OpenFOAM patch
@@ -34,6 +34,7 @@
 #include "coupling/mapping/StateTransfer.hpp"
 #include "structure/io/MeshFileWriters.hpp"
 #include "structure/io/ResultsWriter.hpp"
+#include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/run/Interrupt.hpp"
 #include "structure/run/Simulation.hpp"
@@ -45,12 +46,13 @@ using namespace fsi::structure;
 
 namespace {
 
-// SIGINT asks a run to stop cleanly (exit 130 with the state saved): the handler requests gStop, the token
-// every run of this program gets (RunOptions::stop). A constant-initialised static, so it exists before any
-// code runs. The handler is installed from the
-// executable's pre-initialisation array, before the shared libraries' static initialisers run, so that a
-// Ctrl-C from the first moments is a request, never a kill. Only the loader's mapping and relocation of the
-// libraries (a few tens of ms) precede it.
+// SIGINT and SIGTERM ask a run to stop cleanly (state and summary written, exit 130 or 143): the handler
+// requests gStop, the token every run of this program gets (RunOptions::stop). A constant-initialised static,
+// so it exists before any code runs. The handler is installed from the executable's pre-initialisation array,
+// the first code of the program that runs — before the shared libraries' static initialisers and main() —
+// so that a signal from then on is a request, never a kill. Only the dynamic loader's mapping and relocation
+// of the libraries precede it (a few ms; nothing of the run exists yet): a signal then ends the process by
+// its default action. Commands without a run (map-check, plot, generate) restore the default actions.
 StopToken gStop;
 
 extern "C" void fsiEarlyInterruptHandler(int, char**, char**) {
@@ -69,16 +71,22 @@ void requireEndTime(const Scene& scene) {
                     scene.file.string()));
 }
 
-// --start-from: the model starts at another run's last frame, interpolated onto this mesh (a continuation in
-// a load, a resumed relaxation, or a run of the same geometry on another mesh). Held degrees of freedom stay
-// at their reference.
-nlohmann::json startFromRun(Scene& scene, fs::path source, bool quiet) {
+// --start-from: the model starts at another run's last frame (results.h5), interpolated onto this mesh (a
+// continuation in a load, a resumed relaxation, or a run of the same geometry on another mesh), or at a state
+// file a stopped run kept (interrupted_state.h5, last_good_state.h5: startFromState). Held degrees of freedom
+// stay at their reference.
+nlohmann::json startFromState(Scene& scene, const fs::path& source, bool quiet, RunOptions& opt);
+
+nlohmann::json startFromRun(Scene& scene, fs::path source, bool quiet, RunOptions& opt) {
+  if (fs::is_directory(source)) source /= "results.h5";
+  if (isStateFile(source)) return startFromState(scene, source, quiet, opt);
   if (scene.solver.type != fsi::structure::SolverControl::Type::DynamicRelaxation)
     throw fsi::InputError(
-        fmt::format("--start-from {}: only for a dynamic_relaxation scene (solver.type); "
-                    "{} runs explicit dynamics, which starts at rest in its reference state",
+        fmt::format("--start-from {}: starting from a results file is only for a dynamic_relaxation scene "
+                    "(solver.type); "
+                    "{} runs explicit dynamics, which starts at rest in its reference state or continues "
+                    "from a state file (interrupted_state.h5, last_good_state.h5)",
                     source.string(), scene.file.string()));
-  if (fs::is_directory(source)) source /= "results.h5";
   fsi::structure::ResultsFrame frame;
   try {
     frame = fsi::structure::readLastFrame(source);
@@ -99,6 +107,7 @@ nlohmann::json startFromRun(Scene& scene, fs::path source, bool quiet) {
         source.string(), frame.step, frame.time, frame.numNodes(), N.count, rep.membraneNodes, rep.cableNodes,
         rep.pointNodes, rep.largestDistance);
   return {{"file", source.string()},
+          {"kind", "results"},
           {"frame", frame.step},
           {"time", frame.time},
           {"source_nodes", frame.numNodes()},
@@ -108,24 +117,89 @@ nlohmann::json startFromRun(Scene& scene, fs::path source, bool quiet) {
           {"largest_distance", rep.largestDistance}};
 }
 
+// A state file (io/StateFile) of a run of this scene, node for node (no interpolation: its node count must be
+// the model's). An explicit scene continues from it — time, step, last Δt, positions, mid-step velocities —
+// (an explicit run's state only: a relaxation's time is a load factor); a dynamic relaxation starts at its
+// positions, at rest, from the first load increment.
+nlohmann::json startFromState(Scene& scene, const fs::path& source, bool quiet, RunOptions& opt) {
+  StateSnapshot s;
+  try {
+    s = readState(source);
+  } catch (const fsi::InputError& e) {
+    throw fsi::InputError(fmt::format("--start-from: {}", e.what()));
+  }
+  auto fail = [&](const std::string& what) {
+    throw fsi::InputError(fmt::format("--start-from {}: {}", source.string(), what));
+  };
+  auto& N = scene.model->nodes;
+  if (s.x.size() != N.x.size())
+    fail(
+        fmt::format("dataset /x holds the state of {} nodes, but {} builds a model of {} nodes: the state is "
+                    "of another scene or mesh (give the scene, and the --set options, of the run that wrote "
+                    "it)",
+                    s.x.size() / 3, scene.file.string(), N.count));
+  for (const auto& [name, values] : {std::pair{"/x", &s.x}, std::pair{"/v", &s.v}})
+    for (std::size_t d = 0; d < values->size(); ++d)
+      if (!std::isfinite((*values)[d]))
+        fail(fmt::format("dataset {} holds a non-finite value (node {}, component {})", name, d / 3, d % 3));
+  if (!std::isfinite(s.time)) fail(fmt::format("attribute /@time is {}", s.time));
+  if (!(s.dt >= 0) || !std::isfinite(s.dt)) fail(fmt::format("attribute /@dt is {}, not a step >= 0", s.dt));
+  if (s.step < 0) fail(fmt::format("attribute /@step is {}, not a step count >= 0", s.step));
+  const bool relaxationState = s.scalars.count("load_factor") > 0;
+  const bool explicitScene = scene.solver.type == fsi::structure::SolverControl::Type::ExplicitDynamics;
+  if (explicitScene) {
+    if (relaxationState)
+      fail(
+          fmt::format("the state of a dynamic relaxation (its time is a load factor, /scalars/load_factor) "
+                      "cannot continue an explicit run; {} runs explicit dynamics",
+                      scene.file.string()));
+    if (!(s.time < scene.time.endTime))
+      fail(fmt::format("the state is at t = {:.9g} s, not before the end of {} ({:.9g} s): nothing to run",
+                       s.time, scene.file.string(), scene.time.endTime));
+    if (s.step > 0 && !(s.dt > 0)) fail(fmt::format("attribute /@dt is 0 after {} steps", s.step));
+    for (const int d : scene.constraints.fixedDofs) {  // (a state of this scene has them so already)
+      s.x[std::size_t(d)] = N.X[std::size_t(d)];
+      s.v[std::size_t(d)] = 0.0;
+    }
+    opt.startState = s;
+  } else {
+    N.x = s.x;
+    for (const int d : scene.constraints.fixedDofs) N.x[std::size_t(d)] = N.X[std::size_t(d)];
+    std::fill(N.v.begin(), N.v.end(), 0.0);
+  }
+  if (!quiet)
+    fmt::print("start  {}: {} state at {} {} ({} {:g}), {} nodes{}\n", source.string(),
+               relaxationState ? "relaxation" : "explicit", relaxationState ? "iteration" : "step", s.step,
+               relaxationState ? "load factor" : "t =", s.time, N.count,
+               explicitScene ? "; continuing" : "; its positions start the relaxation");
+  return {{"file", source.string()},
+          {"kind", relaxationState ? "relaxation_state" : "explicit_state"},
+          {"step", s.step},
+          {"time", s.time},
+          {"source_nodes", s.x.size() / 3}};
+}
+
 int runCommand(const fs::path& scenePath, const fs::path& out, const std::vector<std::string>& sets,
                const fs::path& startFrom, bool quiet) {
   installInterruptHandler(gStop);  // (already installed before main; repeated in case a library replaced it)
   Scene scene = loadScene(scenePath, sets);
   requireEndTime(scene);
-  nlohmann::json start;
-  if (!startFrom.empty()) start = startFromRun(scene, startFrom, quiet);
+  RunOptions opt;
+  if (!startFrom.empty()) opt.startFrom = startFromRun(scene, startFrom, quiet, opt);
   // An output directory that cannot be made is bad input too: say so before the run, not as a crash in it.
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec || !fs::is_directory(out))
     throw fsi::InputError(fmt::format("--out {}: cannot create the output directory{}", out.string(),
                                       ec ? ": " + ec.message() : ""));
-  RunOptions opt;
+  // Continued into the directory of the run that kept the state: its series goes on there.
+  if (opt.startState) {
+    const fs::path from = fs::path(opt.startFrom["file"].get<std::string>()).parent_path();
+    opt.continueSeries = fs::equivalent(from.empty() ? fs::path(".") : from, out, ec);
+  }
   opt.outDir = out;
   opt.quiet = quiet;
   opt.stop = &gStop;
-  opt.startFrom = start;
   const RunResult r = runSimulation(scene, opt);
   if (!quiet)
     fmt::print("results {}/results.xdmf (open in ParaView), summary {}/summary.json\n", out.string(),
@@ -255,9 +329,9 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
                     const std::string& variant, const std::string& quadratureLevel,
                     const std::vector<std::string>& sets, bool gapCorrection, const std::string& defect,
                     bool keepSide) {
-  // No run to stop cleanly here: Ctrl-C ends the program as usual (and one pressed during start-up does).
-  std::signal(SIGINT, SIG_DFL);
-  if (gStop.requested()) return 130;
+  // No run to stop cleanly here: Ctrl-C or SIGTERM ends the program as usual (and one sent during start-up
+  // does).
+  restoreDefaultInterrupts();
   if (!sets.empty() && !fsi::coupling::isSceneFile(src) && !fsi::coupling::isSceneFile(dst))
     throw fsi::InputError("--set applies to a structure scene (SCENE.yaml), but neither side is one");
   fsi::coupling::MapCheckOptions opt;
@@ -325,6 +399,7 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
 // (build/share/fsi in the build tree, PREFIX/share/fsi when installed). It replaces this process (execv, the
 // arguments as a vector, no shell), so its exit code is ours: 0 written, 2 bad input, 1 modules missing.
 int plotCommand(const fs::path& runDir, const fs::path& out, const std::string& color) {
+  restoreDefaultInterrupts();  // no run to stop cleanly: signals end the program (and the script) as usual
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw std::runtime_error("cannot locate the fsi executable (/proc/self/exe): " + ec.message());
@@ -355,6 +430,7 @@ int plotCommand(const fs::path& runDir, const fs::path& out, const std::string& 
 // its groups as physical groups, and for meshes with triangles MESH.stl of the outer surface (the `skin` set
 // when the mesh has one, e.g. a parafoil; otherwise every triangle), ready for snappyHexMesh.
 int generateCommand(const fs::path& scenePath, const fs::path& outDir, const std::vector<std::string>& sets) {
+  restoreDefaultInterrupts();  // no run to stop cleanly: signals end the program as usual
   const fsi::structure::Scene scene = fsi::structure::loadScene(scenePath, sets);
   std::error_code ec;
   fs::create_directories(outDir, ec);
@@ -395,10 +471,10 @@ int main(int argc, char** argv) {
   run->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
   run->add_flag("--quiet,-q", quiet, "no progress output");
   fs::path startFrom;
-  run->add_option(
-      "--start-from", startFrom,
-      "start a dynamic relaxation at another run's last frame (RUN or RUN/results.h5), interpolated "
-      "onto this mesh (e.g. a coarser run of the same geometry)");
+  run->add_option("--start-from", startFrom,
+                  "start a dynamic relaxation at another run's last frame (RUN or RUN/results.h5), "
+                  "interpolated onto this mesh (e.g. a coarser run of the same geometry); or continue from "
+                  "a state file of a run of this scene (RUN/interrupted_state.h5, RUN/last_good_state.h5)");
 
   auto* validate = app.add_subcommand("validate", "run a case's reference checks (CASE/reference.yaml)");
   fs::path caseDir, valOut;
@@ -465,7 +541,8 @@ int main(int argc, char** argv) {
   generate->add_option("--set", genSets, "override a scene value: key.path=value (repeatable)");
 
   // Exit codes (README): 0 done, 1 any other failure, 2 bad input (arguments included), 3 unstable, 4 not
-  // converged, 130 interrupted. CLI11's own codes (104-114) would be mistaken for run results.
+  // converged, 130 interrupted by SIGINT, 143 by SIGTERM. CLI11's own codes (104-114) would be mistaken for
+  // run results.
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

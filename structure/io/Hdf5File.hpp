@@ -80,4 +80,16 @@ struct Context {
   }
 };
 
+/// The attribute `name` of `object` as one value. Checked before it is read, with a failure (through `c`)
+/// naming the file, the object (`objectName`: "/", "/steps/000003") and the attribute ("/steps/000003@time"):
+/// that it exists, that it is a scalar (not an array, however short, nor empty), and that it is a number
+/// of the right kind — an integer for `long long`, an integer or a floating-point number for `double`.
+/// Defined for T = double and long long.
+template <typename T>
+T readScalarAttribute(const Context& c, hid_t object, const char* name, const std::string& objectName);
+
+/// A scalar string attribute (fixed or variable length), checked and named as readScalarAttribute.
+std::string readStringAttribute(const Context& c, hid_t object, const char* name,
+                                const std::string& objectName);
+
 }  // namespace fsi::structure::hdf5

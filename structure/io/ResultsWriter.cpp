@@ -73,30 +73,11 @@ struct Context : hdf5::Context {
   }
 };
 
-// Reading back (append mode). Failures name the file and object like the writes.
-std::string readStringAttribute(const Context& c, hid_t object, const char* name,
-                                const std::string& objectName) {
-  const std::string full = objectName + "@" + name;
-  const Hid attr = c.check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, "cannot open attribute", full);
-  const Hid type = c.check(H5Aget_type(attr.get()), H5Tclose, "cannot read the type of", full);
-  const std::size_t size = H5Tget_size(type.get());
-  std::string value(size, '\0');
-  const Hid memType = c.check(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create string type for", full);
-  c.check(H5Tset_size(memType.get(), size), "cannot size string type for", full);
-  c.check(H5Aread(attr.get(), memType.get(), value.data()), "cannot read attribute", full);
-  value.resize(std::strlen(value.c_str()));
-  return value;
-}
-
-template <typename T>
-T readScalarAttribute(const Context& c, hid_t object, const char* name, hid_t memType,
-                      const std::string& objectName) {
-  const std::string full = objectName + "@" + name;
-  const Hid attr = c.check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, "cannot open attribute", full);
-  T value{};
-  c.check(H5Aread(attr.get(), memType, &value), "cannot read attribute", full);
-  return value;
-}
+// Reading back (append mode, --start-from): attributes through hdf5::readScalarAttribute /
+// readStringAttribute, which check each one's shape and type first. Failures name the file and object like
+// the writes.
+using hdf5::readScalarAttribute;
+using hdf5::readStringAttribute;
 
 // Dimensions and values of a dataset, read as memType (int or double).
 template <typename T>
@@ -390,7 +371,7 @@ void ResultsWriter::Impl::open(double keepUntil, const std::vector<std::array<in
   file =
       c.check(H5Fopen(h5Path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "cannot open for appending", "");
   // The series must be of this mesh: a restart with another scene starts a new file instead.
-  const auto nodes = readScalarAttribute<long long>(c, file.get(), "num_nodes", H5T_NATIVE_LLONG, "/");
+  const auto nodes = readScalarAttribute<long long>(c, file.get(), "num_nodes", "/");
   std::vector<hsize_t> triDims, lineDims;
   const std::vector<int> tri =
       readDataset<int>(c, file.get(), "mesh/triangles", "/mesh/triangles", H5T_NATIVE_INT, triDims);
@@ -414,7 +395,7 @@ void ResultsWriter::Impl::open(double keepUntil, const std::vector<std::array<in
     const std::string groupPath = "/steps/" + name;
     const Hid group =
         c.check(H5Gopen2(steps.get(), name.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group", groupPath);
-    const double time = readScalarAttribute<double>(c, group.get(), "time", H5T_NATIVE_DOUBLE, groupPath);
+    const double time = readScalarAttribute<double>(c, group.get(), "time", groupPath);
     if (!(time <= keepUntil)) {
       stale.push_back(name);
       continue;
@@ -632,7 +613,7 @@ std::pair<std::vector<std::string>, std::vector<std::vector<double>>> ResultsWri
     const Hid dset =
         c.check(H5Dopen2(group.get(), column.c_str(), H5P_DEFAULT), H5Dclose, "cannot open dataset", path);
     if (H5Aexists(dset.get(), "column") > 0)
-      col.position = readScalarAttribute<long long>(c, dset.get(), "column", H5T_NATIVE_LLONG, path);
+      col.position = readScalarAttribute<long long>(c, dset.get(), "column", path);
     cols.push_back(std::move(col));
   }
   std::stable_sort(cols.begin(), cols.end(),
@@ -729,7 +710,13 @@ ResultsFrame readLastFrame(const fs::path& h5File) {
   const std::string group = "/steps/" + r.step;
   const Hid g =
       c.check(H5Gopen2(steps.get(), r.step.c_str(), H5P_DEFAULT), H5Gclose, "cannot open group", group);
-  r.time = readScalarAttribute<double>(c, g.get(), "time", H5T_NATIVE_DOUBLE, group);
+  // Every attribute the frame is read with is checked (a scalar of its type: an array `time` was once read
+  // into one double), and its value too.
+  r.time = readScalarAttribute<double>(c, g.get(), "time", group);
+  if (!std::isfinite(r.time))
+    c.fail(fmt::format("non-finite value {} in attribute", r.time), group + "@time");
+  r.stepNumber = readScalarAttribute<long long>(c, g.get(), "step", group);
+  if (r.stepNumber < 0) c.fail(fmt::format("negative value {} in attribute", r.stepNumber), group + "@step");
   for (auto [name, out] :
        {std::pair{"coordinates", &r.coordinates}, std::pair{"displacement", &r.displacement}}) {
     const std::string full = group + "/" + name;
@@ -740,6 +727,10 @@ ResultsFrame readLastFrame(const fs::path& h5File) {
   }
   if (r.coordinates.size() != r.displacement.size()) c.fail("not one displacement per node in", group);
   const int n = r.numNodes();
+  const long long declared = readScalarAttribute<long long>(c, file.get(), "num_nodes", "/");
+  if (declared != n)
+    c.fail(fmt::format("the frame {} holds {} nodes, not the {} of attribute", group, n, declared),
+           "/@num_nodes");
   for (const auto& t : r.triangles)
     for (const int i : t)
       if (i < 0 || i >= n)

@@ -102,12 +102,14 @@ struct ResultsFrame {
   std::vector<double> coordinates;   ///< 3 per node
   std::vector<double> displacement;  ///< 3 per node
   std::string step;                  ///< the frame's group name under /steps
-  double time = 0;
+  double time = 0;                   ///< its attribute `time`
+  long long stepNumber = 0;          ///< its attribute `step` (the run's step or iteration)
   int numNodes() const { return int(coordinates.size() / 3); }
 };
 
 /// The last frame of h5File (written by ResultsWriter). Throws fsi::InputError naming the file and the object
-/// for a file that is not such a series, holds no frame, or holds a non-finite or out-of-range value.
+/// for a file that is not such a series, holds no frame, or holds a non-finite or out-of-range value or an
+/// attribute (`/@num_nodes`, the frame's `time` and `step`) that is not a scalar of its type.
 ResultsFrame readLastFrame(const std::filesystem::path& h5File);
 
 }  // namespace fsi::structure

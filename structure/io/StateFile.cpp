@@ -54,20 +54,6 @@ struct Context : hdf5::Context {
   }
 
   // ---- reading ----
-  template <typename T>
-  T readAttribute(hid_t object, const char* name, hid_t memType) const {
-    const std::string full = std::string("/@") + name;
-    const htri_t exists = H5Aexists(object, name);
-    if (exists < 0) fail("cannot query attribute", full);
-    if (exists == 0) fail("missing attribute", full);
-    const Hid attr = check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, "cannot open attribute", full);
-    const Hid space = check(H5Aget_space(attr.get()), H5Sclose, "cannot get dataspace of", full);
-    if (H5Sget_simple_extent_npoints(space.get()) != 1) fail("expected a single value in attribute", full);
-    T value{};
-    check(H5Aread(attr.get(), memType, &value), "cannot read attribute", full);
-    return value;
-  }
-
   // Reads a rank-1 dataset, or a rank-0 one when scalar is true.
   std::vector<double> readDataset(hid_t parent, const std::string& name, const std::string& full,
                                   bool scalar) const {
@@ -187,16 +173,16 @@ StateSnapshot readState(const fs::path& file) {
   const htri_t tagged = H5Aexists(f.get(), kVersionAttribute);
   if (tagged < 0) c.fail("cannot query attribute", std::string("/@") + kVersionAttribute);
   if (tagged == 0) c.fail("not a state file: missing attribute", std::string("/@") + kVersionAttribute);
-  const int version = c.readAttribute<int>(f.get(), kVersionAttribute, H5T_NATIVE_INT);
+  const long long version = hdf5::readScalarAttribute<long long>(c, f.get(), kVersionAttribute, "/");
   if (version != kFormatVersion) {
     c.fail(fmt::format("unsupported format version {} (expected {}) in attribute", version, kFormatVersion),
            std::string("/@") + kVersionAttribute);
   }
 
   StateSnapshot s;
-  s.time = c.readAttribute<double>(f.get(), "time", H5T_NATIVE_DOUBLE);
-  s.step = static_cast<long>(c.readAttribute<long long>(f.get(), "step", H5T_NATIVE_LLONG));
-  s.dt = c.readAttribute<double>(f.get(), "dt", H5T_NATIVE_DOUBLE);
+  s.time = hdf5::readScalarAttribute<double>(c, f.get(), "time", "/");
+  s.step = static_cast<long>(hdf5::readScalarAttribute<long long>(c, f.get(), "step", "/"));
+  s.dt = hdf5::readScalarAttribute<double>(c, f.get(), "dt", "/");
   s.x = c.readDataset(f.get(), "x", "/x", false);
   s.v = c.readDataset(f.get(), "v", "/v", false);
   if (s.x.size() % 3 != 0 || s.v.size() != s.x.size()) {
@@ -210,6 +196,15 @@ StateSnapshot readState(const fs::path& file) {
     s.arrays[name] = c.readDataset(f.get(), "arrays/" + name, "/arrays/" + name, false);
   }
   return s;
+}
+
+bool isStateFile(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return false;
+  const hdf5::QuietErrors quiet;
+  if (H5Fis_hdf5(file.c_str()) <= 0) return false;
+  const Hid f(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  return f.valid() && H5Aexists(f.get(), kVersionAttribute) > 0;
 }
 
 }  // namespace fsi::structure

@@ -16,7 +16,12 @@ namespace fsi::structure {
 /// HDF5 cannot store ('/' or empty), std::runtime_error naming the file on I/O failure.
 void writeState(const std::filesystem::path& file, const StateSnapshot& state);
 
-/// Throws fsi::InputError naming the file if it is missing, not HDF5, or not a complete state file.
+/// Throws fsi::InputError naming the file if it is missing, not HDF5, or not a complete state file (every
+/// attribute a scalar of its type, every dataset of its rank).
 StateSnapshot readState(const std::filesystem::path& file);
+
+/// True if `file` is an HDF5 file tagged as a state file (root attribute fsi_state_version), whatever else
+/// it holds; false for anything else (missing, not HDF5, a results file). Never throws.
+bool isStateFile(const std::filesystem::path& file);
 
 }  // namespace fsi::structure

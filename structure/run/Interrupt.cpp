@@ -10,9 +10,11 @@ namespace {
 std::atomic<StopToken*> gSigintToken{nullptr};
 static_assert(std::atomic<StopToken*>::is_always_lock_free, "read in a signal handler");
 
-extern "C" void onInterrupt(int) {
-  if (StopToken* token = gSigintToken.load(std::memory_order_relaxed)) token->request();
+extern "C" void onInterrupt(int signal) {
+  if (StopToken* token = gSigintToken.load(std::memory_order_relaxed)) token->request(signal);
 }
+
+constexpr int kSignals[] = {SIGINT, SIGTERM};
 }  // namespace
 
 void installInterruptHandler(StopToken& token) {
@@ -23,8 +25,15 @@ void installInterruptHandler(StopToken& token) {
   struct sigaction sa {};
   sa.sa_handler = onInterrupt;
   sigemptyset(&sa.sa_mask);
+  for (const int s : kSignals) sigaddset(&sa.sa_mask, s);  // one handler at a time
   sa.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &sa, nullptr);
+  for (const int s : kSignals) sigaction(s, &sa, nullptr);
+}
+
+void restoreDefaultInterrupts() {
+  for (const int s : kSignals) std::signal(s, SIG_DFL);
+  const StopToken* token = gSigintToken.load();
+  if (token != nullptr && token->signal() != 0) std::raise(token->signal());
 }
 
 }  // namespace fsi::structure

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <fstream>
@@ -9,6 +10,17 @@
 #include "structure/io/StateFile.hpp"
 
 namespace fsi::structure {
+
+std::string signalName(int signal) {
+  switch (signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    default:
+      return fmt::format("signal {}", signal);
+  }
+}
 
 void printSceneLine(const Scene& scene) {
   fmt::print("scene  {}{}\n", scene.file.string(), scene.title.empty() ? "" : "  (" + scene.title + ")");
@@ -29,8 +41,13 @@ bool RunClock::progressDue(bool soon) {
   return true;
 }
 
-RunOutput::RunOutput(const Scene& scene, const RunOptions& opt) : frames_(scene, opt.outDir / "results.h5") {
-  frames_.write(0.0, 0);
+RunOutput::RunOutput(const Scene& scene, const RunOptions& opt)
+    : frames_(
+          scene, opt.outDir / "results.h5",
+          opt.startState && opt.continueSeries ? std::optional<double>(opt.startState->time) : std::nullopt) {
+  const double time = opt.startState ? opt.startState->time : 0.0;
+  const long step = opt.startState ? opt.startState->step : 0;
+  if (!(frames_.lastTime() >= time)) frames_.write(time, step);
   for (const auto& p : scene.probes) probeNames_.push_back(p.name);
   probeRows_.resize(probeNames_.size() + 1);
 }
@@ -82,6 +99,7 @@ void saveStopState(const RunOptions& opt, const StateSnapshot& state, RunResult&
 
 void finishRun(const Scene& scene, RunResult& result, const RunOptions& opt, nlohmann::json stats,
                const std::string& stopLine) {
+  if (result.reason == StopReason::Interrupted && opt.stop != nullptr) result.stopSignal = opt.stop->signal();
   nlohmann::json s;
   s["scene"] = scene.file.string();
   s["title"] = scene.title;
@@ -93,6 +111,7 @@ void finishRun(const Scene& scene, RunResult& result, const RunOptions& opt, nlo
   if (!opt.startFrom.is_null()) s["start_from"] = opt.startFrom;
   if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;
   if (!result.stateFile.empty()) s["state_file"] = result.stateFile.filename().string();
+  if (result.stopSignal != 0) s["stop_signal"] = signalName(result.stopSignal);
   result.summary = s;
   std::ofstream(opt.outDir / "summary.json") << s.dump(2) << "\n";
 
@@ -101,8 +120,12 @@ void finishRun(const Scene& scene, RunResult& result, const RunOptions& opt, nlo
     for (const auto& [k, v] : result.probes) fmt::print("probe  {} = {:.8g}\n", k, v);
   }
   if (result.diagnosis.empty()) return;
-  fmt::print(stderr, "{}: {}\n", result.reason == StopReason::Interrupted ? "interrupted" : "error",
-             result.diagnosis);
+  if (result.reason == StopReason::Interrupted)
+    fmt::print(stderr, "interrupted{}: {}\n",
+               result.stopSignal != 0 ? " (" + signalName(result.stopSignal) + ")" : std::string(),
+               result.diagnosis);
+  else
+    fmt::print(stderr, "error: {}\n", result.diagnosis);
   std::fflush(stderr);
 }
 

@@ -23,6 +23,9 @@ inline bool stopRequested(const RunOptions& opt) {
   return opt.stop != nullptr && opt.stop->requested();
 }
 
+/// "SIGINT", "SIGTERM" (else "signal N"): how the summary and the terminal name a stop signal.
+std::string signalName(int signal);
+
 /// "scene FILE  (title)", the first line of every run on the terminal.
 void printSceneLine(const Scene& scene);
 
@@ -46,7 +49,8 @@ class RunClock {
 /// probes table (time and every probe, a row per recorded output).
 class RunOutput {
  public:
-  /// Creates the series and writes the initial frame (time 0, step 0).
+  /// Creates the series and writes the initial frame (time 0, step 0; a continued run's: the state's time and
+  /// step, unless the series it continues already ends there).
   RunOutput(const Scene& scene, const RunOptions& opt);
   /// A frame of the model's current state.
   void frame(double time, long step) { frames_.write(time, step); }

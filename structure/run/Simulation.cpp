@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "structure/elements/ElementKind.hpp"
 #include "structure/run/InstabilityDiagnosis.hpp"
@@ -38,6 +39,17 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   const TimeControl& tc = scene.time;
   CentralDifference cd(model, scene.effectList(), scene.constraints, tc.integrator);
   RunResult result;
+  if (opt.startState) {
+    // A continued run (--start-from STATE.h5): the state's time, step count and last step, its positions
+    // and mid-step velocities; the energy bookkeeping starts again at it.
+    const StateSnapshot& s = *opt.startState;
+    if (s.x.size() != N.x.size() || s.v.size() != N.v.size())
+      throw std::invalid_argument(
+          fmt::format("runSimulation: start state of {} nodes for a model of {}", s.x.size() / 3, N.count));
+    cd.restore(s.x, s.v, s.time, s.dt, s.step);
+  }
+  const double startTime = cd.time();
+  const long startStep = cd.steps();
 
   if (!opt.quiet) {
     printSceneLine(scene);
@@ -61,6 +73,9 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   cd.checkpoint(good);
   const double tEnd = tc.endTime;
   double nextOutput = scene.output.interval > 0 ? scene.output.interval : tEnd;
+  // A continued run: the output times the run it continues had still ahead (summed as it summed them).
+  while (scene.output.interval > 0 && cd.time() > 0 && cd.time() >= nextOutput * (1 - 1e-12))
+    nextOutput += scene.output.interval;
   int staticHits = 0;
   bool nonFinite = false;
   double createdAtStop = -1;  // >= 0: the check at an output or the end stopped the run
@@ -141,7 +156,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
     }
     if (!opt.quiet && (printNow || (cd.steps() & 255) == 0)) {  // the clock read every 256 steps at most
       if (clock.progressDue(printNow)) {
-        const double eta = clock.seconds() * (tEnd - cd.time()) / std::max(cd.time(), 1e-300);
+        const double eta = clock.seconds() * (tEnd - cd.time()) / std::max(cd.time() - startTime, 1e-300);
         fmt::print(
             "step {:>9}  t {:.5g}/{:.5g} s  dt {:.3g} s  KE {:.4g} J  U {:.4g} J  {}  {:.0f} s left{}\n",
             cd.steps(), cd.time(), tEnd, cd.lastDt(), E.kinetic, E.strain,
@@ -155,6 +170,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   }
   const double wall = clock.seconds();
   const long steps = cd.steps();
+  const long stepsRun = steps - startStep;  // a continued run counts from the state's step
 
   if (result.reason == StopReason::Unstable) {
     result.diagnosis = diagnoseInstability(scene, cd, good.step, good.time, nonFinite, createdAtStop);
@@ -166,8 +182,9 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
     cd.evaluateForces(true);  // current forces for reactions, current strain energy for the summary
     if (result.reason == StopReason::Interrupted) {
       result.diagnosis =
-          steps == 0 ? fmt::format("stopped during set-up, before the first step (t = {:.6g} s)", cd.time())
-                     : fmt::format("stopped at step {} (t = {:.6g} s)", steps, cd.time());
+          stepsRun == 0
+              ? fmt::format("stopped during set-up, before the first step (t = {:.6g} s)", cd.time())
+              : fmt::format("stopped at step {} (t = {:.6g} s)", steps, cd.time());
       saveStopState(opt, explicitState(cd), result);
     }
   }
@@ -187,7 +204,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   st["steps"] = steps;
   st["simulated_time"] = cd.time();
   st["wall_seconds"] = wall;
-  st["element_updates_per_second"] = wall > 0 ? double(elements) * double(steps) / wall : 0.0;
+  st["element_updates_per_second"] = wall > 0 ? double(elements) * double(stepsRun) / wall : 0.0;
   st["nodes"] = N.count;
   st["membrane_elements"] = model.membranes.count;
   st["cable_elements"] = model.cables.count;

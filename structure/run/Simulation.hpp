@@ -8,8 +8,10 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
+#include "structure/integrate/StateSnapshot.hpp"
 #include "structure/run/StopReason.hpp"
 #include "structure/run/StopToken.hpp"
 #include "structure/scene/Scene.hpp"
@@ -26,6 +28,12 @@ struct RunOptions {
   /// Where the start state came from (`fsi run --start-from`), copied into summary.json as "start_from";
   /// null: the reference state.
   nlohmann::json startFrom;
+  /// An explicit run continues from this state (time, step, dt, x, v of a state file: `fsi run --start-from
+  /// interrupted_state.h5`) instead of starting at rest at time 0; its node count must be the model's.
+  std::optional<StateSnapshot> startState;
+  /// With startState: continue the series in outDir/results.h5 (its frames up to the state's time are kept,
+  /// later ones dropped) instead of starting a new one at the state's time.
+  bool continueSeries = false;
 };
 
 struct RunResult {
@@ -34,7 +42,8 @@ struct RunResult {
   nlohmann::json summary;
   std::string diagnosis;            ///< what stopped the run (unstable, interrupted, not converged)
   std::filesystem::path stateFile;  ///< last_good_state.h5 / interrupted_state.h5 when one was written
-  int exitCode() const { return structure::exitCode(reason); }
+  int stopSignal = 0;               ///< interrupted: the signal that asked for the stop (0: none)
+  int exitCode() const { return structure::exitCode(reason, stopSignal); }
 };
 
 /// Evaluates every probe of the scene at the model's current state (forces must be current for reactions).

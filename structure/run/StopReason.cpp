@@ -18,12 +18,12 @@ std::string toString(StopReason r) {
   return "?";
 }
 
-int exitCode(StopReason r) {
+int exitCode(StopReason r, int signal) {
   switch (r) {
     case StopReason::Unstable:
       return 3;
     case StopReason::Interrupted:
-      return 130;
+      return signal > 0 && signal < 128 ? 128 + signal : 130;
     case StopReason::NotConverged:
       return 4;
     default:

@@ -17,7 +17,8 @@ enum class StopReason {
 /// The name in summary.json: end_time, static, not_converged, unstable, interrupted.
 std::string toString(StopReason r);
 
-/// The exit code of `fsi run`: 0 for a normal end, 3 unstable, 4 not converged, 130 interrupted.
-int exitCode(StopReason r);
+/// The exit code of `fsi run`: 0 for a normal end, 3 unstable, 4 not converged; interrupted: 128 + the signal
+/// that asked for the stop (130 SIGINT, 143 SIGTERM), 130 when no signal did (`signal` 0).
+int exitCode(StopReason r, int signal = 0);
 
 }  // namespace fsi::structure

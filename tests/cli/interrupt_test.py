@@ -1,14 +1,20 @@
 #!/usr/bin/python3
-"""Ctrl-C at the command line: `fsi run` gets SIGINT at several moments of a run that takes a few seconds —
-at once, as soon as the handler exists, during scene loading and set-up, during the step loop, and during a
-dynamic relaxation — several times each, so that a race shows.
+"""Ctrl-C and SIGTERM at the command line: `fsi run` gets SIGINT at several moments of a run that takes a few
+seconds — at once, as soon as the handler exists, during scene loading and set-up, during the step loop, and
+during a dynamic relaxation — several times each, so that a race shows; and SIGTERM (kill, a batch system's
+time limit) at most of the same moments.
 
-Expected every time: exit code 130 (not death by the signal), summary.json with stop_reason "interrupted",
-an interrupted_state.h5 with a finite state, and results.xdmf / results.h5 closed cleanly. The only signals
-that may kill the process are those sent while the dynamic loader still maps the shared libraries, before the
-program's handler exists (read from /proc/PID/status) and before it allocates anything for the scene (its
-resident memory is then that of the libraries, under LOADER_MB). The "loading" moment sends the signal while
-the scene's model is being built (resident memory above SCENE_MB, no results file yet).
+Expected every time: exit code 130 for SIGINT, 143 for SIGTERM (not death by the signal), summary.json with
+stop_reason "interrupted" and stop_signal naming the signal, an interrupted_state.h5 with a finite state, and
+results.xdmf / results.h5 closed cleanly. The only signals that may kill the process are those sent while the
+dynamic loader still maps the shared libraries, before the program's handler exists (read from
+/proc/PID/status) and before it allocates anything for the scene (its resident memory is then that of the
+libraries, under LOADER_MB). The "loading" moment sends the signal while the scene's model is being built
+(resident memory above SCENE_MB, no results file yet).
+
+Then the continuation: a run with an end time stopped by SIGTERM part way and continued with `fsi run SCENE
+--out DIR --start-from DIR/interrupted_state.h5` ends as the run that was never stopped — probes and final
+positions to 1e-12 relative (measured: bit for bit) — with one results series in DIR.
 
 Usage: interrupt_test.py FSI_BINARY WORK_DIR [REPEATS]
 """
@@ -37,12 +43,12 @@ LOADER_MB = 60  # the libraries alone: about 36 MB resident when the handler get
 SCENE_MB = 100  # the 300-ring model grows the process to about 190 MB before the results file appears
 
 
-def handler_installed(pid):
+def handler_installed(pid, sig=signal.SIGINT):
     try:
         with open(f"/proc/{pid}/status") as f:
             for line in f:
                 if line.startswith("SigCgt:"):
-                    return bool(int(line.split()[1], 16) & (1 << (signal.SIGINT - 1)))
+                    return bool(int(line.split()[1], 16) & (1 << (sig - 1)))
     except OSError:
         pass
     return False
@@ -56,8 +62,8 @@ def resident_mb(pid):
         return 0.0
 
 
-def run_once(label, args, moment):
-    """Starts `fsi run`, sends SIGINT at `moment` (seconds after the start, "handler" as soon as the handler is
+def run_once(label, args, moment, sig=signal.SIGINT):
+    """Starts `fsi run`, sends `sig` at `moment` (seconds after the start, "handler" as soon as the handler is
     installed, "loading" while the scene is built), returns a description of the outcome and the failures."""
     out = os.path.join(WORK, label)
     shutil.rmtree(out, ignore_errors=True)
@@ -71,7 +77,7 @@ def run_once(label, args, moment):
     sent_mb = 0.0
     while p.poll() is None:
         t = time.monotonic() - t0
-        if t_handler is None and handler_installed(p.pid):
+        if t_handler is None and handler_installed(p.pid, sig):
             t_handler = t
         if t_results is None and os.path.exists(os.path.join(out, "results.xdmf")):
             t_results = t
@@ -82,10 +88,10 @@ def run_once(label, args, moment):
         else:
             due = t >= moment
         if due and sent_at is None:
-            sent_with_handler = handler_installed(p.pid)
+            sent_with_handler = handler_installed(p.pid, sig)
             sent_mb = resident_mb(p.pid)
             sent_at = t
-            p.send_signal(signal.SIGINT)
+            p.send_signal(sig)
         if sent_at is not None:
             break
         time.sleep(0.0005)
@@ -102,25 +108,26 @@ def run_once(label, args, moment):
     log.close()
     text = open(out + ".log").read()
     failures = []
-    what = f"{label}: SIGINT at {sent_at if sent_at is not None else -1:.3f} s, handler at " + (
+    name = signal.Signals(sig).name
+    what = f"{label}: {name} at {sent_at if sent_at is not None else -1:.3f} s, handler at " + (
         f"{t_handler:.3f} s" if t_handler is not None else "-") + f", exit {rc}"
     if sent_at is None:
         failures.append(f"{what}: the run ended before the signal could be sent (make the run longer)")
         return what, failures, t_handler, t_results
     what += f" ({sent_mb:.0f} MB resident when sent)"
-    if rc == -signal.SIGINT:
+    if rc == -sig:
         if sent_with_handler:
-            failures.append(f"{what}: killed by SIGINT although its handler was installed")
+            failures.append(f"{what}: killed by {name} although its handler was installed")
         elif sent_mb > LOADER_MB:
-            failures.append(f"{what}: killed by SIGINT while loading the scene (no handler yet)")
+            failures.append(f"{what}: killed by {name} while loading the scene (no handler yet)")
         elif os.path.exists(out):
-            failures.append(f"{what}: killed by SIGINT after it had started writing {out}")
+            failures.append(f"{what}: killed by {name} after it had started writing {out}")
         return what + ": killed, signal sent during the dynamic loader", failures, t_handler, t_results
-    if rc != 130:
-        failures.append(f"{what}: exit code {rc}, expected 130\n{text[-2000:]}")
+    if rc != 128 + sig:
+        failures.append(f"{what}: exit code {rc}, expected {128 + sig}\n{text[-2000:]}")
         return what, failures, t_handler, t_results
-    if "interrupted:" not in text:
-        failures.append(f"{what}: no 'interrupted:' message\n{text[-2000:]}")
+    if f"interrupted ({name}):" not in text:
+        failures.append(f"{what}: no 'interrupted ({name}):' message\n{text[-2000:]}")
     try:
         import json
 
@@ -128,6 +135,8 @@ def run_once(label, args, moment):
             summary = json.load(f)
         if summary["stop_reason"] != "interrupted":
             failures.append(f"{what}: stop_reason {summary['stop_reason']}")
+        if summary.get("stop_signal") != name:
+            failures.append(f"{what}: stop_signal {summary.get('stop_signal')}, expected {name}")
         if summary.get("state_file") != "interrupted_state.h5":
             failures.append(f"{what}: summary names no state file")
         with h5py.File(os.path.join(out, "interrupted_state.h5"), "r") as f:
@@ -147,30 +156,82 @@ def run_once(label, args, moment):
     return what, failures, t_handler, t_results
 
 
+def continuation():
+    """SIGTERM part way through a run with an end time, then --start-from its interrupted_state.h5 into the same
+    directory: the same end as a run never stopped. Returns the failures."""
+    failures = []
+    scene = os.path.join(WORK, "hencky-end.yaml")
+    text = open(HENCKY).read()
+    text = text.replace("rings: 16", "rings: 60").replace("interval: 0.005", "interval: 0.001")
+    text = text.replace("until_static: {tolerance: 1.0e-10, max_time: 0.5}", "end: 0.004")
+    with open(scene, "w") as f:
+        f.write(text)
+    whole, part = os.path.join(WORK, "whole"), os.path.join(WORK, "continued")
+    shutil.rmtree(part, ignore_errors=True)
+    p = subprocess.run([FSI, "run", scene, "--out", whole, "--quiet"], capture_output=True, text=True)
+    if p.returncode != 0:
+        return [f"continuation: the uninterrupted run exits {p.returncode}\n{p.stderr[-2000:]}"]
+    what, f, _, _ = run_once("continued", [scene, "--quiet"], 0.8, signal.SIGTERM)
+    print(what, flush=True)
+    if f or not os.path.exists(os.path.join(part, "interrupted_state.h5")):
+        return f or [f"{what}: no interrupted_state.h5 to continue from"]
+    p = subprocess.run([FSI, "run", scene, "--out", part, "--start-from", os.path.join(part, "interrupted_state.h5")],
+                       capture_output=True, text=True)
+    print(f"continued: exit {p.returncode}: {p.stdout.splitlines()[0] if p.stdout else p.stderr.strip()}")
+    if p.returncode != 0:
+        return [f"continuation: --start-from interrupted_state.h5 exits {p.returncode}\n{p.stderr[-2000:]}"]
+    import json
+
+    a, b = (json.load(open(os.path.join(d, "summary.json"))) for d in (whole, part))
+    if b.get("start_from", {}).get("kind") != "explicit_state":
+        failures.append(f"continuation: summary start_from {b.get('start_from')}")
+    for k, v in a["probes"].items():
+        if abs(b["probes"][k] - v) > 1e-12 * abs(v):
+            failures.append(f"continuation: probe {k} {b['probes'][k]!r}, uninterrupted {v!r} (1e-12)")
+    if b["stats"]["steps"] != a["stats"]["steps"]:
+        failures.append(f"continuation: {b['stats']['steps']} steps in all, uninterrupted {a['stats']['steps']}")
+    with h5py.File(os.path.join(whole, "results.h5"), "r") as fa, h5py.File(os.path.join(part, "results.h5"), "r") as fb:
+        ta = [float(fa["steps"][k].attrs["time"]) for k in fa["steps"]]
+        tb = [float(fb["steps"][k].attrs["time"]) for k in fb["steps"]]
+        if not set(ta) <= set(tb) or tb != sorted(tb):
+            failures.append(f"continuation: frames at {tb}, uninterrupted {ta}")
+        xa = np.asarray(fa["steps"][sorted(fa["steps"])[-1]]["coordinates"])
+        xb = np.asarray(fb["steps"][sorted(fb["steps"])[-1]]["coordinates"])
+        dev = float(np.abs(xa - xb).max())
+        scale = float(np.abs(np.asarray(fa["steps"][sorted(fa["steps"])[-1]]["displacement"])).max())
+        print(f"continued: final positions {dev:.3g} m from the uninterrupted run's (largest displacement "
+              f"{scale:.3g} m)")
+        if not dev <= 1e-12 * scale:
+            failures.append(f"continuation: final positions differ by {dev:.3g} m (1e-12 x {scale:.3g} m)")
+    return failures
+
+
 def main():
     moments = [0.0, "handler", "loading", 0.6, 1.2, 2.0]
     failures, handler_times, results_times = [], [], []
     for r in range(REPEATS):
-        for m in moments:
-            label = f"explicit-{m}-{r}"
-            what, f, th, tr = run_once(label, EXPLICIT, m)
+        for sig, ms in ((signal.SIGINT, moments), (signal.SIGTERM, [0.0, "handler", "loading", 1.2])):
+            for m in ms:
+                label = f"explicit-{signal.Signals(sig).name}-{m}-{r}"
+                what, f, th, tr = run_once(label, EXPLICIT, m, sig)
+                print(what, flush=True)
+                failures += f
+                if th is not None:
+                    handler_times.append(th)
+                if tr is not None:
+                    results_times.append(tr)
+        for sig, m in ((signal.SIGINT, 0.5), (signal.SIGINT, 1.0), (signal.SIGTERM, 0.7)):
+            what, f, _, _ = run_once(f"relaxation-{signal.Signals(sig).name}-{m}-{r}", RELAXATION, m, sig)
             print(what, flush=True)
             failures += f
-            if th is not None:
-                handler_times.append(th)
-            if tr is not None:
-                results_times.append(tr)
-        for m in [0.5, 1.0]:
-            what, f, _, _ = run_once(f"relaxation-{m}-{r}", RELAXATION, m)
-            print(what, flush=True)
-            failures += f
+    failures += continuation()
     if handler_times and results_times:
         print(f"handler installed at {min(handler_times):.3f}-{max(handler_times):.3f} s, results file created at "
               f"{min(results_times):.3f}-{max(results_times):.3f} s after the start")
     if failures:
         print("\nFAILED:\n" + "\n".join(failures))
         return 1
-    print("all interrupts honoured")
+    print("all interrupts honoured, the continued run ends as the uninterrupted one")
     return 0
 
 

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -14,11 +15,13 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "TestScenes.hpp"
 #include "structure/integrate/DynamicRelaxation.hpp"
 #include "structure/io/StateFile.hpp"
+#include "structure/run/Interrupt.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
 
@@ -136,6 +139,46 @@ TEST(RunStops, AStateThatCannotBeSavedIsReportedWithTheReason) {
   EXPECT_NE(r.diagnosis.find("could not be saved: writeState: cannot create file"), std::string::npos)
       << r.diagnosis;
   EXPECT_FALSE(summaryOf(out).contains("state_file"));
+}
+
+// A stop asked for by a signal exits with 128 + the signal (130 SIGINT, 143 SIGTERM), says which in the
+// summary and on the terminal, and keeps the state as any other stop request.
+TEST(RunStops, AStopBySignalExitsWith128PlusTheSignal) {
+  EXPECT_EQ(exitCode(StopReason::Interrupted), 130);
+  for (const auto& [signal, code, name] :
+       {std::tuple{SIGINT, 130, "SIGINT"}, std::tuple{SIGTERM, 143, "SIGTERM"}}) {
+    StopToken stop;
+    stop.request(signal);
+    stop.request();  // a later request keeps the first one's signal
+    EXPECT_EQ(stop.signal(), signal);
+    Scene s = loadScene(fs::path(FSI_SOURCE_DIR) / "cases/structure/hencky/scene.yaml");
+    const fs::path out = outDir(std::string("stops-signal-") + name);
+    const RunResult r = run(s, out, &stop);
+    EXPECT_EQ(r.reason, StopReason::Interrupted);
+    EXPECT_EQ(r.exitCode(), code) << name;
+    EXPECT_TRUE(fs::exists(out / "interrupted_state.h5")) << name;
+    const nlohmann::json j = summaryOf(out);
+    EXPECT_EQ(j["stop_reason"], "interrupted");
+    EXPECT_EQ(j["stop_signal"], name);
+  }
+}
+
+// The handler of `fsi run` (installInterruptHandler): SIGINT and SIGTERM request the token with their number
+// instead of ending the process.
+TEST(RunStops, InterruptHandlerTurnsSigintAndSigtermIntoRequests) {
+  static StopToken token;  // outlives the handler's use of it
+  installInterruptHandler(token);
+  for (const int signal : {SIGTERM, SIGINT}) {
+    token.clear();
+    ASSERT_EQ(std::raise(signal), 0);
+    EXPECT_TRUE(token.requested()) << signal;
+    EXPECT_EQ(token.signal(), signal);
+  }
+  token.clear();
+  restoreDefaultInterrupts();  // nothing pending: only the default actions back
+  struct sigaction now {};
+  sigaction(SIGTERM, nullptr, &now);
+  EXPECT_EQ(now.sa_handler, SIG_DFL);
 }
 
 // A request arriving while the loop runs (from another thread here, from SIGINT in `fsi run`).

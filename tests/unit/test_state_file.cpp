@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
@@ -166,6 +167,90 @@ TEST(StateFile, OtherHdf5FileThrowsInputErrorNamingPath) {
   ASSERT_GE(id, 0);
   ASSERT_GE(H5Fclose(id), 0);
   expectInputErrorNaming(file);
+}
+
+// Replaces the root attribute `name` of `file` by one of type `type` and shape `dims` (empty: a scalar).
+void replaceAttribute(const fs::path& file, const char* name, hid_t type, const std::vector<hsize_t>& dims,
+                      const void* data) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  ASSERT_GE(H5Adelete(f, name), 0);
+  const hid_t space =
+      dims.empty() ? H5Screate(H5S_SCALAR) : H5Screate_simple(int(dims.size()), dims.data(), nullptr);
+  const hid_t attr = H5Acreate2(f, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(attr, 0);
+  ASSERT_GE(H5Awrite(attr, type, data), 0);
+  H5Aclose(attr);
+  H5Sclose(space);
+  ASSERT_GE(H5Fclose(f), 0);
+}
+
+// Every attribute is checked for shape and type before it is read (issue 35): the old reader took a
+// one-element array `time` for its value, read a fractional `step` 2.5 as 2 and a two-element version as its
+// first element. Each now an InputError naming the file and the attribute.
+TEST(StateFile, EveryAttributeMustBeAScalarOfItsType) {
+  const ScratchDir dir;
+  const double oneTime[1] = {0.25}, threeTimes[3] = {0.25, 0.5, 0.75}, fraction = 2.5;
+  const int versions[2] = {1, 1};
+  const hid_t text = H5Tcopy(H5T_C_S1);
+  H5Tset_size(text, 4);
+  struct Case {
+    const char* label;
+    const char* attribute;
+    hid_t type;
+    std::vector<hsize_t> dims;
+    const void* data;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"time_one_element", "time", H5T_NATIVE_DOUBLE, {1}, oneTime, "found an array of shape (1)"},
+      {"time_array", "time", H5T_NATIVE_DOUBLE, {3}, threeTimes, "found an array of shape (3)"},
+      {"step_fraction",
+       "step",
+       H5T_NATIVE_DOUBLE,
+       {},
+       &fraction,
+       "expected an integer, found a floating-point"},
+      {"dt_text", "dt", text, {}, "abc", "expected a number, found a string"},
+      {"version_array", "fsi_state_version", H5T_NATIVE_INT, {2}, versions, "found an array of shape (2)"},
+  };
+  for (const Case& c : cases) {
+    const fs::path file = dir.path() / (std::string(c.label) + ".h5");
+    writeState(file, sample(0.0));
+    replaceAttribute(file, c.attribute, c.type, c.dims, c.data);
+    try {
+      readState(file);
+      ADD_FAILURE() << c.label << ": read without an error";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(file.string()), std::string::npos) << c.label << ": " << what;
+      EXPECT_NE(what.find(std::string("'/@") + c.attribute + "'"), std::string::npos)
+          << c.label << ": " << what;
+      EXPECT_NE(what.find(c.says), std::string::npos) << c.label << ": " << what;
+    }
+  }
+  H5Tclose(text);
+  // An integer where a number is expected is a number (h5py writes `attrs["time"] = 0` so).
+  const fs::path file = dir.path() / "integer_time.h5";
+  writeState(file, sample(0.0));
+  const long long three = 3;
+  replaceAttribute(file, "time", H5T_NATIVE_LLONG, {}, &three);
+  EXPECT_EQ(readState(file).time, 3.0);
+}
+
+TEST(StateFile, IsStateFileTellsAStateFromAnythingElse) {
+  const ScratchDir dir;
+  const fs::path state = dir.path() / "state.h5", other = dir.path() / "other.h5", text = dir.path() / "t.h5";
+  writeState(state, sample(0.0));
+  const hid_t id = H5Fcreate(other.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(id, 0);
+  ASSERT_GE(H5Fclose(id), 0);
+  std::ofstream(text) << "not HDF5\n";
+  EXPECT_TRUE(isStateFile(state));
+  EXPECT_FALSE(isStateFile(other));
+  EXPECT_FALSE(isStateFile(text));
+  EXPECT_FALSE(isStateFile(dir.path() / "missing.h5"));
+  EXPECT_FALSE(isStateFile(dir.path()));
 }
 
 }  // namespace

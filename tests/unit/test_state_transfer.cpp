@@ -3,11 +3,13 @@
 // take their own skin's displacement, not the nearer opposite skin's; a node off the source's geometry is a
 // located error; and readLastFrame reads back what ResultsWriter wrote.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "coupling/mapping/StateTransfer.hpp"
 #include "structure/io/ResultsWriter.hpp"
@@ -159,4 +161,67 @@ TEST(StateTransfer, ReadLastFrameReadsWhatTheWriterWrote) {
   EXPECT_EQ(r.coordinates, f.coordinates);
   EXPECT_EQ(r.displacement, f.displacement);
   EXPECT_THROW(fsi::structure::readLastFrame(dir / "missing.h5"), fsi::InputError);
+}
+
+// Every attribute readLastFrame reads is checked for shape and type (issue 35): an array `time` was read
+// into one double (a stack overwrite: `fsi run --start-from` died of SIGSEGV), an array `step` was never
+// looked at. Each is now an InputError naming the file, the frame and the attribute.
+TEST(StateTransfer, ReadLastFrameChecksEveryAttribute) {
+  const auto s = fsi::structure::loadSceneFromString(sheetAndCable(2, 2), "coarse.yaml");
+  const ResultsFrame f = frameOf(*s.model, linearField);
+  const auto dir = std::filesystem::path(FSI_BINARY_DIR) / "unit-test-output" / "state-transfer-attributes";
+  std::filesystem::create_directories(dir);
+  const double times[3] = {1.0, 2.0, 3.0}, fraction = 1.5, nan = std::nan("");
+  const long long steps[2] = {10, 11}, nodes[2] = {1, 2};
+  struct Case {
+    const char* label;
+    const char* object;  // "" the root, else the last frame's group
+    const char* attribute;
+    hid_t type;
+    std::vector<hsize_t> dims;
+    const void* data;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"time_array", "/steps/000001", "time", H5T_NATIVE_DOUBLE, {3}, times, "found an array of shape (3)"},
+      {"time_nan", "/steps/000001", "time", H5T_NATIVE_DOUBLE, {}, &nan, "non-finite"},
+      {"step_array", "/steps/000001", "step", H5T_NATIVE_LLONG, {2}, steps, "found an array of shape (2)"},
+      {"step_fraction", "/steps/000001", "step", H5T_NATIVE_DOUBLE, {}, &fraction, "expected an integer"},
+      {"num_nodes_array", "/", "num_nodes", H5T_NATIVE_LLONG, {2}, nodes, "found an array of shape (2)"},
+  };
+  for (const Case& c : cases) {
+    const auto file = dir / (std::string(c.label) + ".h5");
+    {
+      fsi::structure::ResultsWriter w(file, f.numNodes(), f.triangles, f.lines);
+      std::vector<double> zero(f.coordinates.size(), 0.0);
+      for (int i = 0; i < 2; ++i)
+        w.writeStep(double(i), 10 * i, f.coordinates.data(),
+                    {{"displacement", fsi::structure::FieldView::Center::Node, 3, zero.data(), zero.size()}});
+    }
+    {
+      const hid_t h = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+      ASSERT_GE(h, 0);
+      ASSERT_GE(H5Adelete_by_name(h, c.object, c.attribute, H5P_DEFAULT), 0);
+      const hid_t space = c.dims.empty() ? H5Screate(H5S_SCALAR)
+                                         : H5Screate_simple(int(c.dims.size()), c.dims.data(), nullptr);
+      const hid_t a =
+          H5Acreate_by_name(h, c.object, c.attribute, c.type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      ASSERT_GE(a, 0);
+      ASSERT_GE(H5Awrite(a, c.type, c.data), 0);
+      H5Aclose(a);
+      H5Sclose(space);
+      ASSERT_GE(H5Fclose(h), 0);
+    }
+    const std::string where = std::string(c.object) == "/" ? std::string("/@") + c.attribute
+                                                           : std::string(c.object) + "@" + c.attribute;
+    try {
+      fsi::structure::readLastFrame(file);
+      ADD_FAILURE() << c.label << ": read without an error";
+    } catch (const fsi::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(file.string()), std::string::npos) << c.label << ": " << what;
+      EXPECT_NE(what.find("'" + where + "'"), std::string::npos) << c.label << ": " << what;
+      EXPECT_NE(what.find(c.says), std::string::npos) << c.label << ": " << what;
+    }
+  }
 }

@@ -389,6 +389,17 @@ std::map<std::string, std::vector<double>> StructureParticipant::readState(
     arrays.erase(ledger);
   }
   cd_->evaluateForces(false);
+  // Finite but absurd positions (an element stretched a hundred orders of magnitude, or collapsed) leave no
+  // stable step: named here, not as a bare failure of the subcycling later.
+  const double stable = cd_->stableDt();
+  if (std::isfinite(stable) && !(stable > 0.0))
+    throw InputError(file.string() +
+                     ": restart state: the positions /x give the elements no stable time step " +
+                     "(an element collapsed or stretched beyond reach): the file is damaged");
+  for (double f : scene_->model->nodes.fint)
+    if (!std::isfinite(f))
+      throw InputError(file.string() + ": restart state: the positions /x give non-finite element forces " +
+                       "(an element stretched beyond reach): the file is damaged");
   saveCheckpoint();
   return arrays;
 }

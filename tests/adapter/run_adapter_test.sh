@@ -25,6 +25,10 @@
 #   bad-state       : a restart state with a non-finite value (/x, an interface history) or a missing or short
 #                     dataset (applied_loads, interface_history_2) is refused at start-up naming the file and the
 #                     dataset: no floating-point trap, no silent start without it
+#   state-fuzz      : seeded random damage to a restart state (values, sizes, types, deleted datasets and
+#                     attributes): no trap, crash or uncaught exception; refused naming the file, or run
+#   signals         : SIGINT / SIGTERM at seeded random moments of a serial run: a clean stop (state written,
+#                     exit 0, restartable) once the coupling has taken the signals over
 #   bad-option      : each misspelt option of the issue stops the run at start-up naming the nearest key
 #   bad-value       : each out-of-range value stops the run at start-up naming the key and the valid range;
 #                     OpenFOAM's time-control keys (timeStart, executeInterval, writeControl, ...) are refused:
@@ -383,6 +387,109 @@ PY
     # and the undamaged state still restarts
     solve "$work/base"
     [ $rc -eq 0 ] || fail "the undamaged restart exited with $rc"
+    ;;
+  state-fuzz)
+    # Random damage to a restart state (seeded; FSI_FUZZ_SEED, FSI_FUZZ_COUNT): a value set to nan/inf/1e300/
+    # -1e300, a dataset cut short, grown, deleted or turned into integers, a root attribute (time, dt, step)
+    # made an array or deleted. The oracle: no floating-point trap, no crash, no uncaught exception; a
+    # refused state names fsiStructure.h5; an accepted one runs to the end or stops with a diagnosis.
+    prepare "$work/base"
+    set_entry "$work/base" endTime 0.1
+    set_entry "$work/base" writeInterval 5
+    solve "$work/base"
+    [ $rc -eq 0 ] || fail "the run to 0.1 exited with $rc"
+    set_entry "$work/base" endTime 0.15
+    set_entry "$work/base" startFrom latestTime
+    seed=${FSI_FUZZ_SEED:-1} count=${FSI_FUZZ_COUNT:-12}
+    for k in $(seq 1 "$count"); do
+      dir=$work/fuzz$k
+      rm -rf "$dir" && cp -r "$work/base" "$dir"
+      what=$(/usr/bin/python3 - "$dir/0.1/uniform/fsiStructure.h5" "$((seed * 1000 + k))" <<'PY'
+import random, sys
+import h5py, numpy as np
+rng = random.Random(int(sys.argv[2]))
+f = h5py.File(sys.argv[1], "a")
+sets = ["x", "v"] + ["arrays/" + n for n in f["arrays"]]
+kind = rng.choice(["value", "value", "short", "long", "delete", "int", "attribute"])
+if kind == "attribute":
+    name = rng.choice(["time", "dt", "step"])
+    if rng.random() < 0.5:
+        del f.attrs[name]
+        print(f"deleted attribute {name}")
+    else:
+        f.attrs[name] = np.array([1.0, 2.0])
+        print(f"attribute {name} made an array")
+    sys.exit()
+name = rng.choice(sets)
+d = f[name][()]
+if kind == "value":
+    v = rng.choice([float("nan"), float("inf"), 1e300, -1e300])
+    i = rng.randrange(d.size)
+    d = d.copy().ravel()
+    d[i] = v
+    f[name][...] = d.reshape(f[name].shape)
+    print(f"{name}[{i}] = {v}")
+    sys.exit()
+del f[name]
+if kind == "short":
+    f[name] = d[: max(0, d.size - rng.randint(1, 3))]
+elif kind == "long":
+    f[name] = np.concatenate([d, d[:3]])
+elif kind == "int":
+    f[name] = d.astype(np.int64)
+print(f"{name}: {kind}")
+PY
+) || fail "fuzz $k: could not damage the state"
+      solve "$dir"
+      verdict="exit $rc"
+      [ $rc -ne 136 ] && ! grep -q "sigFpe" "$log" || fail "fuzz $k ($what): floating-point trap"
+      [ $rc -lt 128 ] || fail "fuzz $k ($what): killed by a signal (exit $rc)"
+      ! grep -q "terminate called\|uncaught\|what():" "$log" || fail "fuzz $k ($what): uncaught exception"
+      if [ $rc -ne 0 ]; then
+        # the fatal message itself (the line after OpenFOAM's banner) names the file or is a diagnosis
+        msg=$(grep -A1 "FOAM FATAL" "$log" | grep -v "FOAM FATAL" | head -1)
+        echo "$msg" | grep -q "fsiStructure.h5\|became unstable\|mesh guard" ||
+          fail "fuzz $k ($what): stopped (exit $rc) with '$msg', which names neither the state file nor a diagnosis"
+        verdict="$verdict: $(echo "$msg" | cut -c1-160)"
+      fi
+      echo "fuzz $k ($what): $verdict"
+    done
+    ;;
+  signals)
+    # SIGINT and SIGTERM to a serial pimpleFoam at seeded random moments (FSI_FUZZ_SEED) of a 10 s run: either
+    # before the coupling took over the signals (OpenFOAM's own handling: the process ends, nothing of the run
+    # is claimed) or a clean stop: exit 0, structure/interrupted and the state at its time, from which a restart
+    # (startFrom latestTime) runs to the end.
+    seed=${FSI_FUZZ_SEED:-1}
+    for k in 1 2 3 4; do
+      dir=$work/sig$k
+      prepare "$dir"
+      set_entry "$dir" endTime 10
+      sig=$( [ $((k % 2)) = 0 ] && echo TERM || echo INT )
+      delay=$(/usr/bin/python3 -c "import random; print(round(random.Random($seed * 100 + $k).uniform(0.3, 2.0), 2))")
+      (cd "$dir" && exec pimpleFoam > log.pimpleFoam 2>&1) &
+      pid=$!
+      sleep "$delay"
+      kill -"$sig" $pid 2> /dev/null
+      wait $pid
+      rc=$?
+      log=$dir/log.pimpleFoam
+      ! grep -q "sigFpe\|terminate called" "$log" || fail "signal $k: a trap or an uncaught exception"
+      if [ -f "$dir/structure/interrupted" ]; then
+        [ $rc -eq 0 ] || fail "signal $k: stopped with its state but exit $rc"
+        T=$(sed -n 's/^time //p' "$dir/structure/interrupted")
+        [ -f "$dir/$T/U" ] && [ -f "$dir/$T/uniform/fsiStructure.h5" ] || fail "signal $k: no fields or state at $T"
+        set_entry "$dir" startFrom latestTime
+        solve "$dir"
+        [ $rc -eq 0 ] || fail "signal $k: the restart from $T exited $rc"
+        echo "SIG$sig after ${delay} s: stopped at t = $T, restarted to the end"
+      elif grep -q "^Time = " "$log" && grep -q "\[fsi\] t = " "$log" && [ $rc -eq 0 ]; then
+        echo "SIG$sig after ${delay} s: the run had ended"
+      else
+        ! grep -q "fsiCoupling: t = " "$log" || fail "signal $k: SIG$sig after the coupling started, but no clean stop (exit $rc)"
+        echo "SIG$sig after ${delay} s: before the coupling started (exit $rc)"
+      fi
+    done
     ;;
   subcycles)
     # Subcycling must be consistent: its effect is of the order of the coupled time-step error and

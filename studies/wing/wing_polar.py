@@ -241,7 +241,7 @@ def plot(path, png):
             # error bars: the range over the last fifth of the iterations where the steady solver did not settle
             lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
             hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
-            col = {"layers": "C2", "layers3": "C4"}.get(wall, colours[v])
+            col = {"layers": "C2", "layers3": "k"}.get(wall, colours[v])
             fmt = {"split": "D-.", "layers3": "s:"}.get(wall, styles[lvl])
             ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=fmt, color=col, label=lab,
                            capsize=3, mfc="none" if lvl != "coarse" else None)

@@ -28,19 +28,7 @@ clean() { env -i HOME="$HOME" PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr
 with_env() { local e=$1; shift; clean bash -c '. "$0" && exec "$@"' "$e" "$@"; }
 # json FILE EXPR: a value of summary.json (python expression on s)
 json() { /usr/bin/python3 -c "import json, sys; s = json.load(open(sys.argv[1])); print($2)" "$1"; }
-# last_probe CASE: the reference probe in the last window of structure/coupling*.csv (summarize.py's reader)
-last_probe() {
-  /usr/bin/python3 - "$1" "$src" <<'PY'
-import os, sys, yaml
-sys.path.insert(0, sys.argv[2])
-import summarize
-probe = yaml.safe_load(open(os.path.join(sys.argv[1], "reference.yaml")))["probe"]
-rows, t, v = summarize.history(sys.argv[1], probe)
-print(repr(v[-1]))
-PY
-}
-# close A B TOL: |A - B| <= TOL * max(|A|, |B|)
-close() { /usr/bin/python3 -c "import sys; a, b, t = map(float, sys.argv[1:]); print(f'{a:.9g} vs {b:.9g}: relative difference {abs(a-b)/max(abs(a),abs(b)):.2e} (limit {t:g})'); sys.exit(0 if abs(a-b) <= t*max(abs(a),abs(b)) else 1)" "$@"; }
+. "$(dirname "$0")/case-test-functions.sh"   # last_probe, close
 # force_close SERIAL PARALLEL LIMIT: the interface force of every window (structure/coupling.csv, fluid side)
 # agrees between the two runs within LIMIT of the largest force of the serial run
 force_close() {

@@ -17,22 +17,12 @@
 set -uo pipefail
 mode=$1 build=$2 work=$3 sig=${4:-INT}
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
-src=$repo/cases/coupled/cavity-membrane-2d
+src=$repo/cases/coupled
+case=$src/cavity-membrane-2d
 fail() { echo "FAIL: $*"; exit 1; }
 command -v blockMesh > /dev/null || { echo "no OpenFOAM: skipped"; exit 77; }
 . "$build/share/fsi/fsi-env.sh" > /dev/null || fail "sourcing $build/share/fsi/fsi-env.sh"
-# the reference probe in the last window (summarize.py's reader)
-last_probe() {
-  /usr/bin/python3 - "$1" "$repo/cases/coupled" <<'PY'
-import os, sys, yaml
-sys.path.insert(0, sys.argv[2])
-import summarize
-probe = yaml.safe_load(open(os.path.join(sys.argv[1], "reference.yaml")))["probe"]
-rows, t, v = summarize.history(sys.argv[1], probe)
-print(repr(v[-1]))
-PY
-}
-close() { /usr/bin/python3 -c "import sys; a, b, t = map(float, sys.argv[1:]); print(f'{a:.9g} vs {b:.9g}: relative difference {abs(a-b)/max(abs(a),abs(b)):.2e} (limit {t:g})'); sys.exit(0 if abs(a-b) <= t*max(abs(a),abs(b)) else 1)" "$@"; }
+. "$(dirname "$0")/case-test-functions.sh"   # last_probe, close
 # windows CASE: rows of structure/coupling.csv so far (0 if none)
 windows() {
   local n=0
@@ -95,7 +85,7 @@ case "$mode" in
     runner=./Allrun
     [ "$mode" = parallel ] && runner=./Allrun.parallel sig=INT
     rm -rf "$work" && mkdir -p "$work/straight" "$work/stopped"
-    cp -r "$src" "$work/straight/case" && cp -r "$src" "$work/stopped/case"
+    cp -r "$case" "$work/straight/case" && cp -r "$case" "$work/stopped/case"
     interrupted "$work/stopped/case" "$runner" "$sig"
     "$runner" -continue 1.5 > ../continue.out 2>&1 || { cat ../continue.out; fail "$runner -continue 1.5 failed"; }
     grep -q "structure restarted from" log.pimpleFoam.1 || fail "the continued run did not restart the structure"
@@ -109,7 +99,7 @@ case "$mode" in
     ;;
   iterations)
     rm -rf "$work" && mkdir -p "$work/straight" "$work/restarted"
-    cp -r "$src" "$work/straight/case" && cp -r "$src" "$work/restarted/case"
+    cp -r "$case" "$work/straight/case" && cp -r "$case" "$work/restarted/case"
     (cd "$work/straight/case" && ./Allrun 0.3 > ../run.out 2>&1) || fail "the straight run failed"
     cd "$work/restarted/case" || exit 1
     ./Allrun 0.03 > ../first.out 2>&1 || fail "the run to 0.03 failed"
@@ -127,7 +117,7 @@ case "$mode" in
     [ $((10 * sb)) -le $((11 * sa)) ] || fail "the restarted run needs more than 10 % more iterations"
     ;;
   deadend)
-    rm -rf "$work" && mkdir -p "$work" && cp -r "$src" "$work/case" && cd "$work/case" || exit 1
+    rm -rf "$work" && mkdir -p "$work" && cp -r "$case" "$work/case" && cd "$work/case" || exit 1
     # killed hard while the solver starts: nothing written after t = 0, leftovers (log, structure/)
     ./Allrun 10 > ../run.out 2>&1 &
     pid=$!

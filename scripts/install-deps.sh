@@ -13,7 +13,7 @@ packages=(
   python3 python3-numpy python3-matplotlib python3-h5py python3-yaml python3-scipy
 )
 # python3-yaml: cases/coupled/summarize.py reads the coupled cases' reference.yaml.
-# python3-scipy: scripts/sail_theory.py (linear algebra and root finding of the sail reference; test sail.theory).
+# python3-scipy: studies/sail/sail_theory.py (linear algebra and root finding of the sail reference; test sail.theory).
 
 missing=()
 for p in "${packages[@]}"; do

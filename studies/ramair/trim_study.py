@@ -39,8 +39,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent.parent
 CASE = ROOT / "cases/coupled/ramair-kt"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"
-sys.path.insert(0, str(ROOT / "scripts"))
+sys.path.insert(0, str(ROOT / "studies/common"))
 from case_variants import run_copy, stop_reason  # noqa: E402 (the same edits and runs of the case's copies)
+from provenance import git_commit, machine  # noqa: E402 (the machine line of the stored results)
 
 BENDING = {"+effect": "bending: {triangles: wing/skin, rigidity: 5.2e-5}"}
 STRUCTURE_LEVELS = {  # name: (h relative to the main job's, generator changes)
@@ -441,7 +442,6 @@ def main():
     polar = [collect(n, out) for n, v in RUNS.items() if v[0] == "polar" and (out / n).exists()]
     # the main job (s1-nobend) is both the convergence study's reference and the polar's rigging angle 13
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    from accuracy_cost import git_commit, machine  # noqa: E402
     meta = {"machine": machine(), "finished": stamp, "commit": git_commit()}
     cdoc = {"command": "/usr/bin/python3 studies/ramair/trim_study.py --runs convergence --docs", **meta,
             **convergence_doc(conv)}

@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent.parent
-sys.path.insert(0, str(ROOT / "scripts"))
+sys.path.insert(0, str(ROOT / "studies/common"))
 from case_variants import structure_with  # noqa: E402 (the case's structure.yaml with values changed)
 CASE = ROOT / "cases/coupled/ramair-kt"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"

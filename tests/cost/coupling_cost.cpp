@@ -1,6 +1,6 @@
 // fsi_coupling_cost: one coupled run of the added-mass drum (tests/unit/AddedMassDrum.hpp: the real explicit
 // membrane solver, a reduced fluid that is its added mass) with the given coupling knobs, or its monolithic
-// reference; prints one JSON object. scripts/accuracy_cost.py runs it per setting for the coupled knobs.
+// reference; prints one JSON object. studies/cost/accuracy_cost.py runs it per setting for the coupled knobs.
 //
 //   fsi_coupling_cost [--scheme staggered|implicit] [--acceleration IQN-ILS|Aitken|constant] [--omega W]
 //                     [--reuse Q] [--tolerance T] [--max-iterations N] [--subcycles N] [--window DT]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""ctest cost.accuracy_cost: runs scripts/accuracy_cost.py --quick into WORK and checks what it produced —
+"""ctest cost.accuracy_cost: runs studies/cost/accuracy_cost.py --quick into WORK and checks what it produced —
 the document with a table per knob, non-blank plots — and that the measured errors behave as theory says:
 second-order mesh convergence (Hencky from differences, sphere against its closed form, the projection's
 consistent and dual variants), second order in the safety factor (central differences), lower order for the
@@ -24,7 +24,7 @@ fsi, driver, work = Path(sys.argv[1]), Path(sys.argv[2]), Path(sys.argv[3])
 shutil.rmtree(work, ignore_errors=True)
 work.mkdir(parents=True)
 res_file = work / "accuracy_cost.json"
-subprocess.run(["/usr/bin/python3", str(ROOT / "scripts/accuracy_cost.py"), "--quick", "--fsi", str(fsi), "--coupling-driver",
+subprocess.run(["/usr/bin/python3", str(ROOT / "studies/cost/accuracy_cost.py"), "--quick", "--fsi", str(fsi), "--coupling-driver",
                 str(driver), "--out",
                 str(work), "--json", str(res_file)], check=True)
 
@@ -49,7 +49,7 @@ for heading in ("## Mesh refinement", "### Hencky", "### Pressurised sphere", "#
                 "## Static answers by dynamic relaxation", "## Projection between non-matching meshes",
                 "## Coupled knobs: fluid step", "## Coupled knobs on the sail"):
     check(heading in doc, f"document has '{heading}'")
-# The sail's rows, where scripts/sail_knobs.py --docs stored them: every variant's row in the document.
+# The sail's rows, where studies/sail/sail_knobs.py --docs stored them: every variant's row in the document.
 sail_data = ROOT / "docs/data/sail_knobs.json"
 if sail_data.exists():
     for r in json.loads(sail_data.read_text())["rows"]:
@@ -72,7 +72,7 @@ for name in ("mesh", "time", "dr", "projection", "coupled"):
           f"{png.name} is not blank ({img.shape[1]}x{img.shape[0]}, {100 * dark:.1f} % dark pixels)")
 
 # Mesh refinement. Hencky: near second order against the exact solution of the continuum problem
-# (scripts/hencky_reference.py) and from three successive differences (which needs no reference).
+# (studies/common/hencky_reference.py) and from three successive differences (which needs no reference).
 h = next(s for s in res["mesh"] if s["name"] == "hencky")
 p = h["difference_orders"][-1]
 check(within(p, 1.5, 2.5), f"hencky: observed order from differences {p:.2f} in [1.5, 2.5]")

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""scripts/sail_theory.py (linear theory of a 2D extensible sail, the reference for the coupled case sail-2d)
+"""studies/sail/sail_theory.py (linear theory of a 2D extensible sail, the reference for the coupled case sail-2d)
 against references that share nothing with its Galerkin solver:
   1. Π → ∞: the rigid flat plate (C_L → 2πα) approached at the rates of the large-tension expansion (below);
   2. a fixed large tension: the shape against the analytic first-order solution z ≈ α f(x)/C_T, to O(1/C_T²);
@@ -18,7 +18,7 @@ import numpy as np
 from scipy import optimize
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(HERE, "..", "..", "scripts", "sail_theory.py")
+SCRIPT = os.path.join(HERE, "..", "..", "studies", "sail", "sail_theory.py")
 sys.path.insert(0, os.path.dirname(SCRIPT))
 import sail_theory as st  # noqa: E402
 

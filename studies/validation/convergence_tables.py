@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Mesh-convergence tables for docs/VALIDATION.md. Usage: scripts/convergence_tables.py [build/bin/fsi]
-Runs each case at several mesh sizes through `fsi run --set ...` (scripts/fsi_runs.py) and prints markdown
-tables; scripts/accuracy_cost.py measures the same refinements against wall time."""
+"""Mesh-convergence tables for docs/VALIDATION.md. Usage: studies/validation/convergence_tables.py [build/bin/fsi]
+Runs each case at several mesh sizes through `fsi run --set ...` (studies/common/fsi_runs.py) and prints markdown
+tables; studies/cost/accuracy_cost.py measures the same refinements against wall time."""
 import sys
+from pathlib import Path
 
-import fsi_runs
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))  # fsi_runs
+import fsi_runs  # noqa: E402
 
 if len(sys.argv) > 1:
     fsi_runs.set_fsi(sys.argv[1])

@@ -1,7 +1,8 @@
 """Accuracy versus cost, projection between non-matching meshes: `fsi map-check` on generated curved Gmsh
 patches, per variant and mesh size, and per quadrature level with a much finer source; tables and plot
-(scripts/accuracy_cost.py)."""
+(studies/cost/accuracy_cost.py)."""
 import math
+import sys
 from pathlib import Path
 
 import matplotlib
@@ -10,6 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))  # fsi_runs
 import fsi_runs  # noqa: E402
 from cost_words import buy, buy_from_row_above, fmt_orders, order  # noqa: E402
 

@@ -1,4 +1,4 @@
-"""Words from numbers for docs/ACCURACY_COST.md (scripts/accuracy_cost.py): ratios as the doc prints them,
+"""Words from numbers for docs/ACCURACY_COST.md (studies/cost/accuracy_cost.py): ratios as the doc prints them,
 the "what you buy" sentence of one step, observed convergence orders."""
 import math
 

@@ -5,12 +5,12 @@ log-log plots of error against time. Writes OUT/ACCURACY_COST.md and OUT/img/acc
 docs/ by default) and, with --json, every measured row for the test tests/cost/test_accuracy_cost.py.
 
 Knobs: mesh refinement (Hencky, pressurised sphere, airbag), the safety factor on the stable step, selective
-mass scaling, the dynamic-relaxation method and tolerance (scripts/dr_accuracy_cost.py's measurement), the
+mass scaling, the dynamic-relaxation method and tolerance (studies/relaxation/dr_accuracy_cost.py's measurement), the
 projection variant, mesh and quadrature level of `fsi map-check`; the coupled knobs (fluid step, subcycling,
 acceleration and tolerance, staggered or implicit) on the added-mass problem through the driver
 fsi_coupling_cost (tests/cost/coupling_cost.cpp). The coupled sail: measured by hand (static text, the doc says why).
 
-Usage: scripts/accuracy_cost.py [--quick] [--out DIR] [--fsi PATH] [--coupling-driver PATH] [--json FILE]
+Usage: studies/cost/accuracy_cost.py [--quick] [--out DIR] [--fsi PATH] [--coupling-driver PATH] [--json FILE]
                                 [--repeats N]
   --quick   reduced set (< 3 min on 2 cores): the coarser levels of every knob
 Wall time: the solver's own clock (summary.json stats.wall_seconds: the step or iteration loop, without
@@ -20,55 +20,25 @@ import argparse
 import datetime
 import json
 import os
-import platform
 import shlex
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
-import cost_coupled
-import cost_dr
-import cost_integration
-import cost_mesh
-import cost_projection
-import dr_accuracy_cost
-import fsi_runs
-from cost_words import buy
-from fsi_runs import ROOT
-
-
-def machine():
-    cpu = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    osname = platform.system()
-    try:
-        for line in Path("/etc/os-release").read_text().splitlines():
-            if line.startswith("PRETTY_NAME="):
-                osname = line.split("=", 1)[1].strip('"')
-    except OSError:
-        pass
-    return f"{cpu}, {os.cpu_count()} cores ({osname}, Python {platform.python_version()})"
-
-
-def git_commit():
-    try:
-        c = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                           check=True).stdout.strip()
-        # This script's own outputs do not count as changes to what was measured.
-        dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--untracked-files=no", "--", ".",
-                                ":!docs/ACCURACY_COST.md", ":!docs/img/accuracy_cost_*.png"],
-                               capture_output=True, text=True).stdout.strip()
-        return c + (" with local changes" if dirty else "")
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
+STUDIES = Path(__file__).resolve().parents[1]
+for d in ("common", "relaxation", "sail", "ramair"):  # fsi_runs, provenance; dr_accuracy_cost; sail_knobs; ...
+    sys.path.insert(0, str(STUDIES / d))
+import cost_coupled  # noqa: E402
+import cost_dr  # noqa: E402
+import cost_integration  # noqa: E402
+import cost_mesh  # noqa: E402
+import cost_projection  # noqa: E402
+import dr_accuracy_cost  # noqa: E402
+import fsi_runs  # noqa: E402
+from cost_words import buy  # noqa: E402
+from fsi_runs import ROOT  # noqa: E402
+from provenance import git_commit, machine  # noqa: E402
 
 
 # Sail knobs sail_knobs.py does not repeat (measured by hand on 2026-11-27).
@@ -99,7 +69,7 @@ survives; a tighter coupling tolerance buys nothing visible at 1.35× the cost.
 
 
 def sail_section():
-    """The sail's coupled knobs: the rows scripts/sail_knobs.py --docs stored (minutes of pimpleFoam each, so
+    """The sail's coupled knobs: the rows studies/sail/sail_knobs.py --docs stored (minutes of pimpleFoam each, so
     this script reads them instead of repeating them), then the hand-measured rows it does not repeat."""
     path = ROOT / "docs/data/sail_knobs.json"
     if not path.exists():
@@ -120,13 +90,13 @@ def sail_section():
 
 
 def ramair_section():
-    """The coupled ram-air wing's resolutions against wall time: the rows scripts/ramair_resolutions.py --docs
+    """The coupled ram-air wing's resolutions against wall time: the rows studies/ramair/ramair_resolutions.py --docs
     stored (its runs take half an hour, so this script reads them instead of repeating them)."""
     import ramair_resolutions
     path = ROOT / "docs/data/ramair_resolutions.json"
     head = "## Coupled ram-air wing: fluid and structure resolution against wall time\n"
     if not path.exists():
-        return [head, "Not measured yet: `/usr/bin/python3 scripts/ramair_resolutions.py --docs` (half an hour).\n"]
+        return [head, "Not measured yet: `/usr/bin/python3 studies/ramair/ramair_resolutions.py --docs` (half an hour).\n"]
     d = json.loads(path.read_text())
     rows = d["rows"]
     trimmed = d["finished"] >= "2026-11-28"  # runs to the trim since the main job of 2026-11-28
@@ -338,7 +308,7 @@ def main():
             return str(Path(a).resolve().relative_to(ROOT)) if Path(a).exists() else a
         except ValueError:
             return a
-    command = " ".join(["/usr/bin/python3 scripts/accuracy_cost.py"] + [shlex.quote(shown(a)) for a in sys.argv[1:]])
+    command = " ".join(["/usr/bin/python3 studies/cost/accuracy_cost.py"] + [shlex.quote(shown(a)) for a in sys.argv[1:]])
     write_doc(res, out, command, started, time.monotonic() - t0)
     if args.json:
         Path(args.json).write_text(json.dumps(res, indent=1))

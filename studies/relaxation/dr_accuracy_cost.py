@@ -2,9 +2,9 @@
 """What accuracy costs: for each dynamic-relaxation method and tolerance ε = 1e-2 ... 1e-6, the error in the
 centre displacement and in the maximum principal stress against a tight-tolerance solution (ε = 1e-10),
 versus iterations and wall time, on the 25x25 square cushion. Writes a table into
-docs/DYNAMIC_RELAXATION.md and the plot docs/img/dr_accuracy_cost.png. scripts/accuracy_cost.py calls
+docs/DYNAMIC_RELAXATION.md and the plot docs/img/dr_accuracy_cost.png. studies/cost/accuracy_cost.py calls
 measure() and plot() for its own summary of all the knobs.
-Usage: scripts/dr_accuracy_cost.py   (needs build/bin/fsi and python3-matplotlib; about 1 minute)"""
+Usage: studies/relaxation/dr_accuracy_cost.py   (needs build/bin/fsi and python3-matplotlib; about 1 minute)"""
 import matplotlib
 
 matplotlib.use("Agg")

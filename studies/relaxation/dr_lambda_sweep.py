@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """λ sweep of the dynamic-relaxation methods on the cushion cases (iterations to ε = 1e-3, one load step),
 in the layout of the reference thesis. Writes the table into docs/DYNAMIC_RELAXATION.md.
-Usage: scripts/dr_lambda_sweep.py   (needs build/bin/fsi; about 5 minutes on 2 cores)"""
+Usage: studies/relaxation/dr_lambda_sweep.py   (needs build/bin/fsi; about 5 minutes on 2 cores)"""
 from concurrent.futures import ThreadPoolExecutor
 
 from dr_common import METHODS, replace_block, run

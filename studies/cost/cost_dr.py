@@ -1,7 +1,11 @@
-"""Accuracy versus cost, dynamic relaxation: scripts/dr_accuracy_cost.py's measurement (method and tolerance
-on the 25x25 cushion) with a "what you buy" per step (scripts/accuracy_cost.py)."""
-import dr_accuracy_cost
-from cost_words import buy
+"""Accuracy versus cost, dynamic relaxation: studies/relaxation/dr_accuracy_cost.py's measurement (method and tolerance
+on the 25x25 cushion) with a "what you buy" per step (studies/cost/accuracy_cost.py)."""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "relaxation"))  # dr_accuracy_cost
+import dr_accuracy_cost  # noqa: E402
+from cost_words import buy  # noqa: E402
 
 
 def dr_study(methods, eps, repeats):
@@ -13,7 +17,7 @@ def dr_study(methods, eps, repeats):
 def dr_section(dr):
     md = ["## Static answers by dynamic relaxation: method and tolerance\n",
           "The 25×25 square cushion (`cases/structure/cushion-square-25`, 2028 dof), measured by "
-          "`scripts/dr_accuracy_cost.py`'s `measure()`; error of the centre displacement against the "
+          "`studies/relaxation/dr_accuracy_cost.py`'s `measure()`; error of the centre displacement against the "
           f"KDR solution at ε = 1e-10 ({dr['reference']['iterations']} iterations, "
           f"{dr['reference']['value'] * 1e3:.4f} mm). Methods: docs/DYNAMIC_RELAXATION.md.\n",
           "![dynamic relaxation: error against iterations and wall time](img/accuracy_cost_dr.png)\n",

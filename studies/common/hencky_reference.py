@@ -2,7 +2,7 @@
 """The Hencky problem's exact answer for this solver's continuum model, to many digits: a clamped circular
 membrane (radius a, E t = Y, Poisson ν) under a uniform follower pressure p, Green–Lagrange strain, St
 Venant–Kirchhoff plane stress on the reference thickness. The published value (33.14 mm for the case's data,
-docs/VALIDATION.md) has 4 digits; mesh-convergence errors below 1e-4 need more (scripts/accuracy_cost.py).
+docs/VALIDATION.md) has 4 digits; mesh-convergence errors below 1e-4 need more (studies/cost/accuracy_cost.py).
 
 Axisymmetric equilibrium on the reference radius R, deformed meridian x(R) = (r, z):
     d/dR (R S_r x') − S_θ (r/R) e_r + p r n = 0,   n = (−z', r')
@@ -11,7 +11,7 @@ likewise.
 With q = R S_r x' the system (r, z, q) is first order; at the centre the stretch λ₀ is isotropic and the
 surface a paraboloid of curvature p / (2 S₀) (Young–Laplace). Shooting on λ₀ until r(a) = a (RK4, then a
 secant iteration); the answer is checked by halving the step.
-Usage: scripts/hencky_reference.py   (prints the centre deflection of cases/structure/hencky)"""
+Usage: studies/common/hencky_reference.py   (prints the centre deflection of cases/structure/hencky)"""
 import math
 
 

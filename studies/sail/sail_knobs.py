@@ -10,10 +10,10 @@ window, the window-to-window alternation of the sail's force over 0.2 s to END (
 force_smoothness: 1 for a sign flip every window, 0 for a smooth force), and the camber and lift at END against
 the shipped case's.
 
-  /usr/bin/python3 scripts/sail_knobs.py [--out DIR] [--only shipped,tolerance] [--end 0.6] [--collect] [--docs]
+  /usr/bin/python3 studies/sail/sail_knobs.py [--out DIR] [--only shipped,tolerance] [--end 0.6] [--collect] [--docs]
 
 --collect reads finished runs in OUT instead of running them. --docs also stores the rows with the machine,
-date and commit in docs/data/sail_knobs.json, from where scripts/accuracy_cost.py puts them into
+date and commit in docs/data/sail_knobs.json, from where studies/cost/accuracy_cost.py puts them into
 docs/ACCURACY_COST.md. About 3 minutes per run on the 2-core machine of docs/PERFORMANCE.md (the run without
 damping stops early). The environment (build/share/fsi/fsi-env.sh) is sourced for every run."""
 import argparse
@@ -25,13 +25,14 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 CASE = ROOT / "cases/coupled/sail-2d"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"
 sys.path.insert(0, str(ROOT / "cases/coupled"))
-sys.path.insert(0, str(ROOT / "scripts"))
+sys.path.insert(0, str(ROOT / "studies/common"))
 import summarize  # noqa: E402 (the cases' own reader and force_smoothness)
 from case_variants import chosen, stop_reason  # noqa: E402
+from provenance import git_commit, machine  # noqa: E402 (the same machine line as the other tables)
 
 
 def replace_once(text, old, new, where):
@@ -158,10 +159,9 @@ def main():
     print(table(rows))
     print(reading(rows))
     if a.docs:
-        from accuracy_cost import git_commit, machine  # the same machine line as the other tables
         stamp = datetime.datetime.fromtimestamp(max((out / r["variant"] / "wall_seconds").stat().st_mtime
                                                     for r in rows), datetime.timezone.utc)
-        meta = {"command": "/usr/bin/python3 scripts/sail_knobs.py --docs", "end": a.end, "machine": machine(),
+        meta = {"command": "/usr/bin/python3 studies/sail/sail_knobs.py --docs", "end": a.end, "machine": machine(),
                 "finished": stamp.strftime("%Y-%m-%d %H:%M UTC"), "commit": git_commit(), "rows": rows}
         (ROOT / "docs/data").mkdir(exist_ok=True)
         (ROOT / "docs/data/sail_knobs.json").write_text(json.dumps(meta, indent=1) + "\n")

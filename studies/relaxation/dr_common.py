@@ -1,7 +1,11 @@
 """Helpers shared by the dynamic-relaxation study scripts: the methods, a run of a cushion case (through
 fsi_runs.run), and updating a marked block of docs/DYNAMIC_RELAXATION.md."""
-import fsi_runs
-from fsi_runs import ROOT
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))  # fsi_runs
+import fsi_runs  # noqa: E402
+from fsi_runs import ROOT  # noqa: E402
 
 DOC = ROOT / "docs/DYNAMIC_RELAXATION.md"
 

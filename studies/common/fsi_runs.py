@@ -9,7 +9,7 @@ from pathlib import Path
 
 import hencky_reference
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 FSI = ROOT / "build/bin/fsi"  # the scripts' --fsi option replaces it (set_fsi)
 
 
@@ -89,7 +89,7 @@ MESH_STUDIES = {
         case="hencky", probe="center_deflection", unit=1e-3, unit_name="mm", level_name="rings",
         sets=lambda n: [f"meshes.disc.generator.rings={n}"], h=lambda n: 0.1425 / n,
         reference=lambda: hencky_reference.centre_deflection(),
-        reference_text="GL/SVK axisymmetric solution {:.6f} mm (scripts/hencky_reference.py: the membrane's "
+        reference_text="GL/SVK axisymmetric solution {:.6f} mm (studies/common/hencky_reference.py: the membrane's "
                        "ODEs by shooting; published to 4 digits: 33.14 mm)",
         reference_resolution=0.0, expected_order=2),
     "sphere": dict(

@@ -1,15 +1,18 @@
 """Accuracy versus cost, coupled knobs: the added-mass drum (tests/unit/AddedMassDrum.hpp; one run per call of
 the driver fsi_coupling_cost, tests/cost/coupling_cost.cpp) against its exact answer: fluid step, subcycling,
-acceleration and tolerance, staggered or implicit; tables and plot (scripts/accuracy_cost.py)."""
+acceleration and tolerance, staggered or implicit; tables and plot (studies/cost/accuracy_cost.py)."""
 import json
 import subprocess
+import sys
 import tempfile
+from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))  # fsi_runs
 import fsi_runs  # noqa: E402
 from cost_words import buy, buy_from_row_above, fmt_orders, order  # noqa: E402
 

@@ -7,11 +7,11 @@ refined (1.5 x the chordwise points and span divisions). Every variant is a
 copy of the case run with ./Allrun.parallel (2 ranks) in OUT/<variant>; the table and the plot compare the
 summary's figures against the wall time of the whole run.
 
-  /usr/bin/python3 scripts/ramair_resolutions.py [--out DIR] [--only coarse,fluid-medium] [--collect] [--docs]
+  /usr/bin/python3 studies/ramair/ramair_resolutions.py [--out DIR] [--only coarse,fluid-medium] [--collect] [--docs]
 
 --collect reads finished runs in OUT instead of running them. --docs also stores the rows with the machine,
 date and commit in docs/data/ramair_resolutions.json and the plot in docs/img/ramair_resolutions.png, from
-where scripts/accuracy_cost.py puts them into docs/ACCURACY_COST.md. Runs take 5 (coarse) to 30 (fluid-medium)
+where studies/cost/accuracy_cost.py puts them into docs/ACCURACY_COST.md. Runs take 5 (coarse) to 30 (fluid-medium)
 minutes on the 2-core machine of docs/PERFORMANCE.md. The environment (build/share/fsi/fsi-env.sh) is
 sourced for every run."""
 import argparse
@@ -22,9 +22,10 @@ import shutil
 import sys
 from pathlib import Path
 
-from case_variants import chosen, run_copy, stop_reason
-
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "studies/common"))
+from case_variants import chosen, run_copy, stop_reason  # noqa: E402
+from provenance import git_commit, machine  # noqa: E402 (the same machine line as the other tables)
 CASE = ROOT / "cases/coupled/ramair-kt"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"
 
@@ -162,11 +163,9 @@ def main():
     plot(rows, out / "resolutions.png")
     print(table(rows))
     if a.docs:
-        sys.path.insert(0, str(ROOT / "scripts"))
-        from accuracy_cost import git_commit, machine  # noqa: E402 (the same machine line as the other tables)
         stamp = datetime.datetime.fromtimestamp(max((out / r["variant"] / "wall_seconds").stat().st_mtime
                                                     for r in rows), datetime.timezone.utc)
-        meta = {"command": "/usr/bin/python3 scripts/ramair_resolutions.py --docs", "machine": machine(),
+        meta = {"command": "/usr/bin/python3 studies/ramair/ramair_resolutions.py --docs", "machine": machine(),
                 "finished": stamp.strftime("%Y-%m-%d %H:%M UTC"), "commit": git_commit(), "rows": rows}
         (ROOT / "docs/data").mkdir(exist_ok=True)
         (ROOT / "docs/data/ramair_resolutions.json").write_text(json.dumps(meta, indent=1) + "\n")

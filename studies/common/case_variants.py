@@ -1,5 +1,6 @@
-"""Helpers of the scripts and studies that run a coupled case in several variants and tabulate them
-(ramair_resolutions.py, sail_knobs.py, studies/wing/wing_polar.py, studies/ramair/trim_study.py): which variants
+"""Helpers of the studies that run a coupled case in several variants and tabulate them
+(studies/ramair/ramair_resolutions.py, studies/sail/sail_knobs.py, studies/wing/wing_polar.py,
+studies/ramair/trim_study.py): which variants
 were asked for, the case's settings and structure.yaml with some values changed, a copy of the case run by its
 Allrun, and why a run stopped early."""
 import re

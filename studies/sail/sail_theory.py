@@ -27,9 +27,9 @@ slack sail holds a cambered shape without incidence (Thwaites 1961); the physica
 sail has C_T above the first eigenvalue and is found by root finding on C_T − C_T0 − Π ε(C_T) = 0.
 
 Usage:
-  /usr/bin/python3 scripts/sail_theory.py --alpha 4 --elasticity 50 [--pretension 0] [--terms 128]
+  /usr/bin/python3 studies/sail/sail_theory.py --alpha 4 --elasticity 50 [--pretension 0] [--terms 128]
                                           [--json out.json] [--plot docs/img/sail_theory.png] [--table]
-As a module: sys.path.insert(0, 'scripts'); import sail_theory; sail_theory.solve(4.0, 50.0) -> dict.
+As a module: sys.path.insert(0, 'studies/sail'); import sail_theory; sail_theory.solve(4.0, 50.0) -> dict.
 Bad input (negative Π, |α| > 15°, non-finite values, ...) exits 2 naming the argument."""
 import argparse
 import functools
@@ -354,7 +354,7 @@ def plot(path, alpha_deg=4.0, terms=DEFAULT_TERMS):
     ax3.set_ylabel("z / c (above the chord)")
     ax3.legend()
     ax3.grid(True, lw=0.3)
-    fig.suptitle(f"Linear theory of a 2D extensible sail, α = {alpha_deg:g}°, no pretension (scripts/sail_theory.py)")
+    fig.suptitle(f"Linear theory of a 2D extensible sail, α = {alpha_deg:g}°, no pretension (studies/sail/sail_theory.py)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -1,11 +1,15 @@
 """Accuracy versus cost, time integration: the safety factor on the stable step and selective mass scaling, on
 a Hencky transient (against a much smaller step), its static answer and the static sphere; tables and plot
-(scripts/accuracy_cost.py)."""
+(studies/cost/accuracy_cost.py)."""
+import sys
+from pathlib import Path
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))  # fsi_runs
 import fsi_runs  # noqa: E402
 from cost_words import buy, buy_from_row_above, fmt_orders, order, times  # noqa: E402
 

@@ -1,10 +1,14 @@
 """Accuracy versus cost, mesh refinement: the validation cases of fsi_runs.MESH_STUDIES at several mesh sizes,
-error against their references and a finer mesh, observed orders; table and plot (scripts/accuracy_cost.py)."""
+error against their references and a finer mesh, observed orders; table and plot (studies/cost/accuracy_cost.py)."""
+import sys
+from pathlib import Path
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))  # fsi_runs
 import fsi_runs  # noqa: E402
 from cost_words import buy_from_row_above, fmt_orders, order  # noqa: E402
 from fsi_runs import MESH_STUDIES  # noqa: E402

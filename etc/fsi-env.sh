@@ -4,7 +4,7 @@
 # (P/share/fsi/) work alike, and sets:
 #   PATH             += <root>/bin     the fsi command
 #   LD_LIBRARY_PATH  += <root>/lib     libfsiFoam.so, which pimpleFoam loads by name (controlDict `libs`)
-#   FSI_SHARE_DIR     = <root>/share/fsi   case-functions.sh, summarize.py and ramair_fluid.py, used by the cases' Allrun
+#   FSI_SHARE_DIR     = <root>/share/fsi   case-functions.sh, summarize.py and ramair_fluid.py (with its ramair_*.py parts), used by the cases' Allrun
 #   WM_PROJECT_DIR    = /usr/share/openfoam unless already set (Debian's OpenFOAM v1912 finds its etc/ there)
 # Sourcing it twice adds nothing twice.
 if [ -z "${BASH_SOURCE:-}" ]; then

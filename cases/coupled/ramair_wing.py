@@ -7,7 +7,7 @@ What it reads (nothing from them is run):
   constant/structure/wing.msh   the structure's mesh with its sets (Allrun: `fsi generate structure-coupled.yaml`):
                                 ribs, leading_edge, trailing_edge, skin, confluence, toggles, line rows
   structure/results.h5          the canopy's frames (coordinates, displacement, velocity, cable_force)
-  structure/coupling.csv        one row per window (through summarize.py, via ramair_fluid.coupled_summary)
+  structure/coupling.csv        one row per window (through summarize.py, via ramair_summary.coupled_summary)
   LATEST/p, LATEST/wallShearStress, LATEST/polyMesh/points (or constant/polyMesh/points), constant/polyMesh
                                 the fluid's load on the `wing` patch at the latest written time (ASCII)
 
@@ -516,7 +516,7 @@ def _finite(name, *values):
 
 
 def analyse(case, rec, c):
-    """The `wing` part of summary.json from a finished coupled case; c = ramair_fluid.coupled_summary(...)."""
+    """The `wing` part of summary.json from a finished coupled case; c = ramair_summary.coupled_summary(...)."""
     s, d = rec["settings"], rec["derived"]
     e_d, e_l = np.array(d["flow_dir"], float), np.array(d["lift_dir"], float)
     e_s = np.cross(e_l, e_d)  # the span direction (+y: right)
@@ -951,8 +951,8 @@ def converged_reference(case, rec, w, path=None):
 def same_settings(a, b):
     """Two settings records alike, a key missing from one standing for its default (a setting added after the
     study ran, at its default, changes nothing)."""
-    import ramair_fluid  # same folder; the settings' defaults
-    default = {k: v[1] for k, v in ramair_fluid.SETTINGS.items()}
+    import ramair_settings  # same folder; the settings' defaults
+    default = {k: v[1] for k, v in ramair_settings.SETTINGS.items()}
     return all(a.get(k, default.get(k)) == b.get(k, default.get(k)) for k in set(a) | set(b))
 
 

@@ -63,7 +63,8 @@ case "$mode" in
     rm -rf "$work" && mkdir -p "$work/run"
     cmake --install "$build" --prefix "$work/prefix" > "$work/install.log" 2>&1 || { cat "$work/install.log"; fail "cmake --install failed"; }
     for f in bin/fsi lib/libfsiFoam.so share/fsi/fsi-env.sh share/fsi/case-functions.sh share/fsi/summarize.py \
-      share/fsi/ramair_fluid.py share/fsi/ramair_wing.py; do
+      share/fsi/ramair_fluid.py share/fsi/ramair_settings.py share/fsi/ramair_geometry.py share/fsi/ramair_dicts.py \
+      share/fsi/ramair_fields.py share/fsi/ramair_mesh.py share/fsi/ramair_summary.py share/fsi/ramair_wing.py; do
       [ -f "$work/prefix/$f" ] || fail "the install has no $f"
     done
     ! readelf -d "$work/prefix/lib/libfsiFoam.so" | grep -q "$build" || fail "the installed library refers to the build tree"

@@ -121,8 +121,10 @@ case "$mode" in
     # killed hard while the solver starts: nothing written after t = 0, leftovers (log, structure/)
     ./Allrun 10 > ../run.out 2>&1 &
     pid=$!
-    while [ ! -s log.pimpleFoam ]; do sleep 0.05; done
-    pkill -KILL -f "fsi-solver|pimpleFoam" ; kill -KILL $pid 2> /dev/null
+    while [ ! -s log.pimpleFoam ] || [ ! -s .fsi.pid ]; do sleep 0.05; done
+    # this case's solver only (its own session: the pid in .fsi.pid leads its process group), then Allrun
+    kill -KILL -- "-$(tr -cd '0-9' < .fsi.pid)" 2> /dev/null
+    kill -KILL $pid 2> /dev/null
     wait $pid 2> /dev/null
     sleep 0.5
     ls -d [1-9]* 0.[0-9]* 2> /dev/null && fail "the killed run wrote a time directory: not the case tested"

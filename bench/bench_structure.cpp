@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "structure/effects/ThreadedForces.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"

@@ -405,7 +405,8 @@ std::map<std::string, std::vector<double>> StructureParticipant::readState(
 }
 
 void StructureParticipant::openResults(const std::filesystem::path& h5File, std::optional<double> keepUntil) {
-  frames_ = std::make_unique<structure::SceneFrames>(*scene_, h5File, keepUntil);
+  frames_ = std::make_unique<structure::SceneFrames>(*scene_->model, scene_->constraints,
+                                                     scene_->output.fields, h5File, keepUntil);
   probeNames_.assign(1, "time");
   for (const auto& p : scene_->probes) probeNames_.push_back(p.name);
   energyRows_.assign(kEnergyColumns.size(), {});

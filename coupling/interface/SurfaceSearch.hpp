@@ -92,7 +92,6 @@ class SurfaceSearch {
 
   const FanTriangulation& fan() const { return fan_; }
   double tolerance() const { return tolerance_; }
-  void setTolerance(double tolerance) { tolerance_ = tolerance; }
 
  private:
   struct BoxNode {

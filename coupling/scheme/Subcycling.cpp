@@ -43,7 +43,6 @@ Eigen::VectorXd SubcycledStructure::solve(double t, double dt, const Eigen::Vect
     stepper_.step(t0, t1 - t0, f0_, f1_);
     f0_.swap(f1_);
   }
-  lastSubsteps_ = n;
   return stepper_.interfaceDisplacement();
 }
 

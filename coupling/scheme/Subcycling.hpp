@@ -42,7 +42,6 @@ class SubcycledStructure final : public StructureSolver {
                         const Eigen::VectorXd& loadsEnd) override;
   void saveCheckpoint() override { stepper_.saveCheckpoint(); }
   void restoreCheckpoint() override { stepper_.restoreCheckpoint(); }
-  int lastSubsteps() const { return lastSubsteps_; }
   /// Substeps a window of length dt takes from the stepper's current stable step.
   int substepsFor(double dt) const;
   const SubcyclingOptions& options() const { return opt_; }
@@ -50,7 +49,6 @@ class SubcycledStructure final : public StructureSolver {
  private:
   StructureStepper& stepper_;
   SubcyclingOptions opt_;
-  int lastSubsteps_ = 0;
   Eigen::VectorXd f0_, f1_;
 };
 

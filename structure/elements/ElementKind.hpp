@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
-#include "structure/io/ResultsWriter.hpp"
+#include "structure/model/FieldView.hpp"
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure {

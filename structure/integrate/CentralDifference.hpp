@@ -46,8 +46,6 @@ class CentralDifference {
   double lastDt() const { return dt_; }
   double stableDt() const { return stableDt_; }  ///< element estimate at the last force evaluation
   long steps() const { return steps_; }
-  /// Upper bound on the step from now on (a coupling forces a minimum number of subcycles this way).
-  void setMaxDt(double maxDt) { settings_.maxDt = maxDt; }
   double maxDt() const { return settings_.maxDt; }
   const EnergyLedger& energy() const { return ledger_; }
   const Constraints& constraints() const { return constraints_; }

@@ -34,8 +34,8 @@
 #include "structure/integrate/Constraints.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
 #include "structure/integrate/StateSnapshot.hpp"
+#include "structure/integrate/StopReason.hpp"
 #include "structure/model/Model.hpp"
-#include "structure/run/StopReason.hpp"
 
 namespace fsi::structure {
 

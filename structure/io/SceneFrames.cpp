@@ -5,10 +5,11 @@
 
 namespace fsi::structure {
 
-SceneFrames::SceneFrames(const Scene& scene, const std::filesystem::path& file,
+SceneFrames::SceneFrames(const Model& model, const Constraints& constraints,
+                         const std::set<std::string>& fields, const std::filesystem::path& file,
                          std::optional<double> keepUntil)
-    : scene_(scene) {
-  const Model& m = *scene.model;
+    : model_(model), constraints_(constraints), fields_(fields) {
+  const Model& m = model_;
   std::vector<std::array<int, 3>> tris(m.membranes.count);
   for (int e = 0; e < m.membranes.count; ++e)
     tris[e] = {m.membranes.conn[3 * e], m.membranes.conn[3 * e + 1], m.membranes.conn[3 * e + 2]};
@@ -21,9 +22,9 @@ SceneFrames::SceneFrames(const Scene& scene, const std::filesystem::path& file,
 }
 
 void SceneFrames::write(double time, long step) {
-  const Model& m = *scene_.model;
+  const Model& m = model_;
   const Nodes& N = m.nodes;
-  const auto& f = scene_.output.fields;
+  const auto& f = fields_;
   std::vector<FieldView> views;
   u_.resize(3 * N.count);
   for (int i = 0; i < 3 * N.count; ++i) u_[i] = N.x[i] - N.X[i];
@@ -32,7 +33,7 @@ void SceneFrames::write(double time, long step) {
   if (f.count("residual")) {
     // Out-of-balance force f_ext − f_int on free dofs (forces as last evaluated by the solver; on a tied node
     // its share of its group's, Constraints::reactions).
-    scene_.constraints.reactions(N, r_);
+    constraints_.reactions(N, r_);
     for (int i = 0; i < 3 * N.count; ++i) r_[i] = N.invMassDof[i] != 0.0 ? -r_[i] : 0.0;
     views.push_back({"residual", FieldView::Center::Node, 3, r_.data()});
   }

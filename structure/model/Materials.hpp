@@ -1,7 +1,9 @@
 #pragma once
 // Material records as the scene defines them. Units: SI (Pa, m, kg/m³).
 
+#include <map>
 #include <string>
+#include <vector>
 
 namespace fsi::structure {
 
@@ -27,6 +29,15 @@ struct CableMaterial {
 struct PointMassMaterial {
   std::string name;
   double mass = 0;  ///< mass per node [kg]
+};
+
+/// The materials of a scene, by element kind (what the material types' readers fill, material/MaterialTypes).
+struct MaterialTable {
+  std::vector<MembraneMaterial> membrane;
+  std::vector<CableMaterial> cable;
+  std::vector<PointMassMaterial> pointMass;
+  /// element kind → material name → index in that kind's list
+  std::map<std::string, std::map<std::string, int>> index;
 };
 
 }  // namespace fsi::structure

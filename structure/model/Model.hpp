@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "structure/material/MaterialTypes.hpp"
 #include "structure/model/Materials.hpp"
 #include "structure/model/MeshData.hpp"
 
@@ -123,15 +122,6 @@ struct MeshInput {
   /// (node, material) pairs).
   std::map<std::string, std::any> kindInputs;
 };
-
-/// Builds a Model: merges meshes, renumbers, precomputes reference geometry, lets every registered element
-/// kind build its own block (ElementKind::build, in registry order), sums the lumped masses, and rejects
-/// degenerate input (zero-area triangles, zero-length cables, repeated nodes in an element, massless nodes)
-/// with an InputError naming the element or node.
-Model buildModel(std::vector<MeshInput> meshes, const MaterialTable& materials);
-/// The same for membranes and cables only.
-Model buildModel(std::vector<MeshInput> meshes, std::vector<MembraneMaterial> membraneMaterials,
-                 std::vector<CableMaterial> cableMaterials);
 
 /// Membrane dilatational wave speed c_d = sqrt(Y / (ρ (1 − ν²))).
 double membraneWaveSpeed(const MembraneMaterial& m);

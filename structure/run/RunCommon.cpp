@@ -43,7 +43,7 @@ bool RunClock::progressDue(bool soon) {
 
 RunOutput::RunOutput(const Scene& scene, const RunOptions& opt)
     : frames_(
-          scene, opt.outDir / "results.h5",
+          *scene.model, scene.constraints, scene.output.fields, opt.outDir / "results.h5",
           opt.startState && opt.continueSeries ? std::optional<double>(opt.startState->time) : std::nullopt) {
   const double time = opt.startState ? opt.startState->time : 0.0;
   const long step = opt.startState ? opt.startState->step : 0;

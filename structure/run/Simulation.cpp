@@ -13,7 +13,7 @@
 
 namespace fsi::structure {
 
-// evaluateProbes: structure/probes/EvaluateProbes.cpp.
+// evaluateProbes: structure/run/EvaluateProbes.cpp.
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "structure/integrate/StateSnapshot.hpp"
-#include "structure/run/StopReason.hpp"
+#include "structure/integrate/StopReason.hpp"
 #include "structure/run/StopToken.hpp"
 #include "structure/scene/Scene.hpp"
 

@@ -1,12 +1,12 @@
 #pragma once
 // The scene's `materials:` section, read through the material-type registry
-// (structure/material/MaterialTypes: valid types, their keys and checks), and the references to materials
+// (structure/scene/MaterialTypes: valid types, their keys and checks), and the references to materials
 // from the meshes.
 
 #include <map>
 #include <string>
 
-#include "structure/material/MaterialTypes.hpp"
+#include "structure/scene/MaterialTypes.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {

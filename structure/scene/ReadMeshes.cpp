@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/ElementKind.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/MeshSources.hpp"

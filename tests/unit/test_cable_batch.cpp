@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "ForceDifference.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/model/Model.hpp"
 

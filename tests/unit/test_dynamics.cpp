@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "structure/effects/ExternalLoads.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"

@@ -8,11 +8,12 @@
 #include <string>
 
 #include "TestScenes.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/ElementKind.hpp"
 #include "structure/elements/PointMassElement.hpp"
-#include "structure/material/MaterialTypes.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/Generators.hpp"
+#include "structure/scene/MaterialTypes.hpp"
 #include "structure/scene/Scene.hpp"
 
 using namespace fsi::structure;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "HardCases.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"

@@ -10,6 +10,7 @@
 
 #include "ForceDifference.hpp"
 #include "MembraneEvaluation.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/material/WrinklingMembrane.hpp"
 #include "structure/model/Model.hpp"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/material/WrinklingMembrane.hpp"
 #include "structure/model/Model.hpp"

@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/model/Model.hpp"

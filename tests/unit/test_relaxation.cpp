@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "TestScenes.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
 #include "structure/run/Simulation.hpp"

@@ -21,6 +21,7 @@
 #include "structure/effects/PressureDistribution.hpp"
 #include "structure/effects/ThreadedForces.hpp"
 #include "structure/effects/Threads.hpp"
+#include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/integrate/CentralDifference.hpp"

@@ -53,7 +53,6 @@ Eigen::VectorXd IqnIls::compute(const Eigen::VectorXd& d, const Eigen::VectorXd&
   // asks for steps many residuals long); the reused ones only while the step stays within maxStepRatio |r|.
   const bool finite = next.allFinite();
   if (finite && (past_.empty() || (next - d).norm() <= opt_.maxStepRatio * r.norm())) return next;
-  ++safeguardedSteps_;
   past_.clear();
   next = quasiNewtonStep(r, dTilde, false);
   return next.size() != 0 && next.allFinite() ? next : relax(d, r);

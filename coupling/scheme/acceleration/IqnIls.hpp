@@ -42,9 +42,6 @@ class IqnIls final : public Acceleration {
   void onTimeWindowComplete(bool converged) override;
   std::string name() const override;
 
-  int lastColumnsUsed() const { return lastColumnsUsed_; }  ///< after filtering, in the last step
-  int lastColumnsFiltered() const { return lastColumnsFiltered_; }
-  int safeguardedSteps() const { return safeguardedSteps_; }  ///< steps the step-length limit replaced
   /// The past windows' columns kept for reuse: `past_columns` (the column count of each window, newest
   /// first), `past_v` and `past_w` (the columns one after another, newest first).
   State state() const override;
@@ -64,8 +61,10 @@ class IqnIls final : public Acceleration {
   std::deque<Columns> past_;  // newest window first, at most reuseSteps
   Eigen::VectorXd previousResidual_, previousOutput_;
   int iteration_ = 0;
+  // The column filter's count in the last quasi-Newton step (used after filtering, dropped by it). Nothing
+  // in the product reads them; the unit tests do, through this seam (tests/unit/test_coupling_schemes.cpp).
   int lastColumnsUsed_ = 0, lastColumnsFiltered_ = 0;
-  int safeguardedSteps_ = 0;
+  friend struct IqnIlsTestAccess;
 };
 
 /// Its registry entry: name (the value of the option `acceleration`), description, options, factory.

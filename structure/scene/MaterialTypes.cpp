@@ -1,4 +1,4 @@
-#include "structure/material/MaterialTypes.hpp"
+#include "structure/scene/MaterialTypes.hpp"
 
 #include <cmath>
 

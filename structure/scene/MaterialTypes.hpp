@@ -16,15 +16,6 @@ namespace fsi::structure {
 
 class YamlMap;
 
-/// The materials of a scene, by element kind.
-struct MaterialTable {
-  std::vector<MembraneMaterial> membrane;
-  std::vector<CableMaterial> cable;
-  std::vector<PointMassMaterial> pointMass;
-  /// element kind → material name → index in that kind's list
-  std::map<std::string, std::map<std::string, int>> index;
-};
-
 struct MaterialType {
   std::string name;               ///< the `type:` value
   std::string elementKind;        ///< the element kind it feeds (ElementKind::name())

@@ -1,4 +1,4 @@
-#include "structure/run/StopReason.hpp"
+#include "structure/integrate/StopReason.hpp"
 
 namespace fsi::structure {
 

@@ -1,0 +1,21 @@
+#pragma once
+// buildModel: the Model from its meshes and materials. Above model/ (docs/ARCHITECTURE.md "Layers") because
+// every registered element kind builds its own block and adds its lumped masses (elementKinds()).
+
+#include <vector>
+
+#include "structure/model/Materials.hpp"
+#include "structure/model/Model.hpp"
+
+namespace fsi::structure {
+
+/// Builds a Model: merges meshes, renumbers, precomputes reference geometry, lets every registered element
+/// kind build its own block (ElementKind::build, in registry order), sums the lumped masses, and rejects
+/// degenerate input (zero-area triangles, zero-length cables, repeated nodes in an element, massless nodes)
+/// with an InputError naming the element or node.
+Model buildModel(std::vector<MeshInput> meshes, const MaterialTable& materials);
+/// The same for membranes and cables only.
+Model buildModel(std::vector<MeshInput> meshes, std::vector<MembraneMaterial> membraneMaterials,
+                 std::vector<CableMaterial> cableMaterials);
+
+}  // namespace fsi::structure

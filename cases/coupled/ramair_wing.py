@@ -916,9 +916,17 @@ def converged_reference(case, rec, w, path=None):
     """This run's CL, CD and trim angles against the values the convergence study (docs/data/ramair_convergence
     .json) extrapolated to a fine structure, when this case has the inputs that study ran as the main job (the
     same structure.yaml, byte for byte, and the same settings); otherwise why there is no reference."""
-    path = path or os.path.join(os.path.dirname(os.path.abspath(__file__)), CONVERGED)
+    if path is None:
+        # share/fsi (FSI_SHARE_DIR, set by fsi-env.sh; or beside this file in an install), else the source tree's
+        # docs/data: a script run through build/share/fsi's symbolic links imports this module from the sources
+        # (python puts the script's resolved folder on sys.path)
+        here = os.path.dirname(os.path.abspath(__file__))
+        places = [os.environ.get("FSI_SHARE_DIR", ""), here,
+                  os.path.join(os.path.dirname(os.path.dirname(here)), "docs", "data")]
+        path = next((os.path.join(d, CONVERGED) for d in places if d and os.path.exists(os.path.join(d, CONVERGED))),
+                    os.path.join(here, CONVERGED))
     if not os.path.exists(path):
-        return {"available": False, "why": f"no {CONVERGED} beside ramair_wing.py"}
+        return {"available": False, "why": f"no {CONVERGED} in share/fsi ($FSI_SHARE_DIR) or beside ramair_wing.py"}
     try:
         with open(path) as f:
             ref = json.load(f)

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "ScratchDir.hpp"
 #include "structure/io/ResultsWriter.hpp"
 
 namespace fsi::structure {
@@ -57,25 +58,7 @@ struct StepData {
   }
 };
 
-// Scratch directory per test, removed afterwards.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("fsi_" + std::string(info->test_suite_name()) + "_" + info->name() +
-                                         "_" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::ScratchDir;
 
 // Minimal RAII for the test's own HDF5 reads.
 struct H5Handle {

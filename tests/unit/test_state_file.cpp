@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "ScratchDir.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
 
@@ -21,24 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("fsi_" + std::string(info->test_suite_name()) + "_" + info->name() +
-                                         "_" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::ScratchDir;
 
 StateSnapshot sample(double salt) {
   StateSnapshot s;

@@ -31,7 +31,7 @@ STRUCTURE_LAYERS = [
     "probes",  # run-time measurements of a model
     "scene",  # the YAML scene: reading, resolving sets, building a Model and its run controls
     "parafoil",  # the `parafoil` generator (a scene generator: registers itself with scene/)
-    "roundcanopy",  # the `round_canopy` generator (a scene generator: registers itself with scene/)
+    "roundcanopy",  # the round canopy's constructed shape (the `round_canopy` generator: registers with scene/)
     "run",  # Simulation, the run loops, stop reasons, diagnosis, summaries
 ]
 

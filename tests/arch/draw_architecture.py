@@ -34,6 +34,7 @@ ROLES = {
     "probes": "run-time measurements",
     "scene": "YAML scene -> Model + run controls",
     "parafoil": "the parafoil generator",
+    "roundcanopy": "the round canopy's constructed shape",
     "run": "Simulation, run loops, stop, summaries",
     "coupling": "interface, mapping, schemes, accelerations",
     "adapter": "OpenFOAM function object (libfsiFoam)",

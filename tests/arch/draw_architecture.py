@@ -39,6 +39,7 @@ ROLES = {
     "coupling": "interface, mapping, schemes, accelerations",
     "adapter": "OpenFOAM function object (libfsiFoam)",
     "apps": "the fsi command line",
+    "flight": "parafoil-payload flight: 6 DOF, tables, wind",
 }
 
 
@@ -81,6 +82,7 @@ def main(argv):
     top = (len(layers) - 1) * (box_h + gap)
     for j, lib in enumerate(["coupling", "adapter", "apps"]):  # the libraries above structure, to its right
         pos[lib] = (box_w + 1.8 + j * (box_w + 0.9), top * (0.12 + 0.36 * j))
+    pos["flight"] = (box_w + 1.8, top * 0.86)  # beside coupling: uses structure only
     fig, ax = plt.subplots(figsize=(16, 8.5))
     ax.add_patch(patches.FancyBboxPatch((-0.25, -0.3), box_w + 0.5, top + box_h + 0.75, boxstyle="round,pad=0.02",
                                         fc="#f4f6fa", ec="#5a6b8c", lw=1.5))
@@ -133,7 +135,7 @@ def main(argv):
             "arrow: #include lines from a folder into another (the includer points at what it uses)\n"
             "green: with the layers (a folder uses only itself and those below / to its left); "
             f"red: against them ({against} now, allow-listed in tests/arch/check_layers.py)\n"
-            "libraries: structure <- coupling <- adapter <- apps;  checked by ctest arch.layers",
+            "libraries: structure <- coupling <- adapter <- apps, structure <- flight <- apps;  checked by ctest arch.layers",
             fontsize=8.5, va="bottom")
     ax.set_xlim(-0.5, pos["apps"][0] + box_w + 0.3)
     ax.set_ylim(-0.5, top + box_h + 0.7)

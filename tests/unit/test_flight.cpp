@@ -1,0 +1,152 @@
+// The flight model (flight/): the rigid parafoil-payload system's equations of motion against closed forms —
+// energy of the Kirchhoff equations with apparent mass, the integrator's 4th order, a torque-free spin, the
+// analytic steady glide (with payload and line drag) and its drift in a steady wind.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "flight/FlightSystem.hpp"
+#include "structure/model/Error.hpp"
+
+namespace fsi::flight {
+namespace {
+
+FlightSystem tumbler() {
+  FlightSystem s;
+  s.mass = 80;
+  s.inertia << 60, 2, -5, 2, 45, 1, -5, 1, 30;
+  s.addedMass = Vec3(3, 25, 40);
+  s.addedInertia = Vec3(10, 4, 2);
+  s.aerodynamics = false;
+  return s;
+}
+
+FlightState moving() {
+  FlightState x;
+  x.position = Vec3(0, 0, -500);
+  x.velocity = Vec3(10, -2, 3);
+  x.rates = Vec3(0.4, -0.7, 0.25);
+  x.attitude = Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()));
+  return x;
+}
+
+FlightState integrate(const FlightSystem& s, const Wind& wind, FlightState x, double end, double dt) {
+  const int n = int(std::lround(end / dt));
+  for (int i = 0; i < n; ++i) x = rungeKuttaStep(s, wind, Controls{}, i * dt, dt, x);
+  return x;
+}
+
+TEST(Flight, KirchhoffEquationsConserveEnergyWithApparentMass) {
+  // The continuous equations conserve the energy exactly; RK4's error in it falls at 4th order.
+  const FlightSystem s = tumbler();
+  const FlightState x0 = moving();
+  const double e0 = mechanicalEnergy(s, x0);
+  std::vector<double> err;
+  for (double dt : {2e-3, 1e-3, 5e-4}) {
+    const FlightState x = integrate(s, Wind{}, x0, 3.0, dt);
+    err.push_back(std::abs(mechanicalEnergy(s, x) / e0 - 1));
+    EXPECT_GT(x.position.z(), x0.position.z()) << "it falls (z is down)";
+  }
+  EXPECT_LT(err.back(), 1e-9);
+  EXPECT_NEAR(std::log2(err[0] / err[1]), 4.0, 0.5);
+  EXPECT_NEAR(std::log2(err[1] / err[2]), 4.0, 0.5);
+  // The apparent mass does something (the Munk moment turns the body).
+  FlightSystem plain = s;
+  plain.addedMass = Vec3::Zero();
+  EXPECT_GT(
+      (integrate(plain, Wind{}, x0, 1.0, 1e-3).rates - integrate(s, Wind{}, x0, 1.0, 1e-3).rates).norm(),
+      1e-3);
+}
+
+TEST(Flight, RungeKuttaIsFourthOrder) {
+  const FlightSystem s = tumbler();
+  const FlightState ref = integrate(s, Wind{}, moving(), 2.0, 0.02 / 16);
+  double last = 0;
+  for (double dt : {0.04, 0.02, 0.01}) {
+    const FlightState x = integrate(s, Wind{}, moving(), 2.0, dt);
+    const double err = (x.rates - ref.rates).norm() + (x.velocity - ref.velocity).norm();
+    if (last > 0) {
+      EXPECT_NEAR(std::log2(last / err), 4.0, 0.3) << dt;
+    }
+    last = err;
+  }
+}
+
+TEST(Flight, TorqueFreeSpinAboutAPrincipalAxisIsARotation) {
+  FlightSystem s = tumbler();
+  s.inertia = Vec3(60, 45, 30).asDiagonal();
+  s.gravity = 0;
+  FlightState x;
+  x.rates = Vec3(0, 0, 0.8);
+  const FlightState y = integrate(s, Wind{}, x, 5.0, 1e-3);
+  const Quat expect(Eigen::AngleAxisd(0.8 * 5.0, Vec3::UnitZ()));
+  EXPECT_LT(y.attitude.angularDistance(expect), 1e-10);
+}
+
+FlightSystem glider() {
+  FlightSystem s;
+  s.mass = 120;
+  s.inertia = Vec3(150, 120, 40).asDiagonal();
+  s.aero.alpha = {0.0};
+  s.aero.CL = {0.8};
+  s.aero.CD = {0.2};
+  s.aero.Cm = {0.0};
+  s.aero.area = 25;
+  s.aero.span = 8;
+  s.aero.chord = 3;
+  s.payloadDragArea = 0.5;
+  s.lineDragArea = 0.3;
+  s.addedMass = Vec3::Constant(20);  // isotropic: no Munk moment, so nothing turns the glider
+  return s;
+}
+
+TEST(Flight, SettlesIntoTheAnalyticSteadyGlide) {
+  const FlightSystem s = glider();
+  FlightState x;
+  x.position = Vec3(0, 0, -1000);
+  x.velocity = Vec3(12, 0, 0);
+  x = integrate(s, Wind{}, x, 120.0, 0.01);
+  // Steady glide: tan(gamma) = CD_system / CL with CD_system = CD + (C_D A)_payload+lines / S, and
+  // W = q S sqrt(CL^2 + CD_system^2).
+  const double cd = 0.2 + (0.5 + 0.3) / 25, cl = 0.8;
+  const Vec3 ground = x.attitude * x.velocity;
+  const double gamma = std::atan2(ground.z(), std::hypot(ground.x(), ground.y()));
+  EXPECT_NEAR(gamma, std::atan(cd / cl), 1e-8);
+  const double v = std::sqrt(2 * s.mass * s.gravity / (s.airDensity * s.aero.area * std::hypot(cl, cd)));
+  EXPECT_NEAR(ground.norm(), v, 1e-7 * v);
+}
+
+TEST(Flight, SteadyWindCarriesTheGlide) {
+  const FlightSystem s = glider();
+  Wind wind;
+  wind.steady = Vec3(0, -3, 0);  // from the east
+  FlightState calm, windy;
+  calm.velocity = windy.velocity = Vec3(12, 0, 0);
+  calm = integrate(s, Wind{}, calm, 120.0, 0.01);
+  windy = integrate(s, wind, windy, 120.0, 0.01);
+  const Vec3 gCalm = calm.attitude * calm.velocity, gWindy = windy.attitude * windy.velocity;
+  EXPECT_LT((gWindy - gCalm - wind.steady).norm(), 1e-6) << "ground velocity = air velocity + wind";
+}
+
+TEST(Flight, TablesAreChecked) {
+  AeroTable t;
+  EXPECT_THROW(t.check("flight.yaml"), InputError);
+  t.alpha = {0.0, 0.1, 0.05};
+  t.CL = t.CD = t.Cm = {0, 0, 0};
+  EXPECT_THROW(t.check("flight.yaml"), InputError);
+  t.alpha = {0.0, 0.1, 0.2};
+  t.CD = {0.1, -0.1, 0.2};
+  EXPECT_THROW(t.check("flight.yaml"), InputError);
+  t.CD = {0.1, 0.1, 0.2};
+  EXPECT_NO_THROW(t.check("flight.yaml"));
+  // Interpolation and clamping.
+  t.CL = {0.2, 0.6, 0.8};
+  EXPECT_DOUBLE_EQ(t.at(0.05, 0, 0, 0, 0, 0, 0, 10).CL, 0.4);
+  EXPECT_DOUBLE_EQ(t.at(-1.0, 0, 0, 0, 0, 0, 0, 10).CL, 0.2);
+  EXPECT_DOUBLE_EQ(t.at(1.0, 0, 0, 0, 0, 0, 0, 10).CL, 0.8);
+}
+
+}  // namespace
+}  // namespace fsi::flight

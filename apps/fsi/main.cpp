@@ -32,6 +32,8 @@
 #include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
 #include "coupling/mapping/StateTransfer.hpp"
+#include "flight/FlightFile.hpp"
+#include "flight/FlightRun.hpp"
 #include "structure/io/MeshFileWriters.hpp"
 #include "structure/io/ResultsWriter.hpp"
 #include "structure/io/StateFile.hpp"
@@ -426,6 +428,22 @@ int plotCommand(const fs::path& runDir, const fs::path& out, const std::string& 
   throw std::runtime_error(fmt::format("cannot run {}: {}", python, std::strerror(errno)));
 }
 
+// A flight of the rigid parafoil-payload system (flight/, docs/FLIGHT.md): trajectory.csv and summary.json in
+// OUT; `fsi plot OUT` draws it.
+int flyCommand(const fs::path& file, const fs::path& outDir, const std::vector<std::string>& sets,
+               bool quiet) {
+  restoreDefaultInterrupts();  // seconds long: signals end the program as usual
+  const fsi::flight::FlightCase c = fsi::flight::readFlightFile(file, sets);
+  const fsi::flight::FlightResult r = fsi::flight::runFlight(c, outDir, quiet);
+  fmt::print(
+      "{}: {} after {:.1f} s at north {:.1f} m, east {:.1f} m{}; glide ratio over the last fifth {:.2f}, "
+      "airspeed {:.2f} m/s, descent {:.2f} m/s\n{}/trajectory.csv, summary.json (plots: fsi plot {})\n",
+      file.string(), r.landed ? "landed" : "ended", r.time, r.landing.x(), r.landing.y(),
+      r.landed ? "" : fmt::format(", altitude {:.1f} m", -r.landing.z()), r.glideRatio, r.airspeed,
+      r.descentRate, outDir.string(), outDir.string());
+  return 0;
+}
+
 // Every mesh of the scene as built (generators run, files read), before the model renumbers it: MESH.msh with
 // its groups as physical groups, and for meshes with triangles MESH.stl of the outer surface (the `skin` set
 // when the mesh has one, e.g. a parafoil; otherwise every triangle), ready for snappyHexMesh.
@@ -540,6 +558,16 @@ int main(int argc, char** argv) {
   generate->add_option("--out,-o", genOut, "output directory")->required();
   generate->add_option("--set", genSets, "override a scene value: key.path=value (repeatable)");
 
+  auto* fly = app.add_subcommand(
+      "fly", "fly the parafoil-payload system on a coefficient table (FLIGHT.yaml; docs/FLIGHT.md)");
+  fs::path flyFile, flyOut;
+  std::vector<std::string> flySets;
+  bool flyQuiet = false;
+  fly->add_option("flight", flyFile, "flight YAML file")->required();
+  fly->add_option("--out,-o", flyOut, "output directory")->required();
+  fly->add_option("--set", flySets, "override a value: key.path=value (repeatable)");
+  fly->add_flag("--quiet,-q", flyQuiet, "no progress output");
+
   // Exit codes (README): 0 done, 1 any other failure, 2 bad input (arguments included), 3 unstable, 4 not
   // converged, 130 interrupted by SIGINT, 143 by SIGTERM. CLI11's own codes (104-114) would be mistaken for
   // run results.
@@ -571,6 +599,7 @@ int main(int argc, char** argv) {
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
     if (*generate) return generateCommand(genScene, genOut, genSets);
+    if (*fly) return flyCommand(flyFile, flyOut, flySets, flyQuiet);
   } catch (const fsi::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

@@ -1,0 +1,175 @@
+#include "flight/FlightFile.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "structure/model/Error.hpp"
+#include "structure/scene/YamlAccess.hpp"
+
+namespace fsi::flight {
+
+using structure::YamlMap;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+Vec3 vec(const YamlMap& m, const std::string& key, const Vec3& fallback) {
+  if (!m.has(key)) return fallback;
+  const auto v = m.vec3(key);
+  return Vec3(v[0], v[1], v[2]);
+}
+
+void readSystem(const YamlMap& m, FlightSystem& s) {
+  s.mass = m.positive("mass");
+  if (m.has("inertia")) {
+    const std::vector<double> j = m.numbers("inertia");
+    if (j.size() == 3) {
+      s.inertia = Vec3(j[0], j[1], j[2]).asDiagonal();
+    } else if (j.size() == 6) {  // Ixx, Iyy, Izz, Ixy, Ixz, Iyz
+      s.inertia << j[0], j[3], j[4], j[3], j[1], j[5], j[4], j[5], j[2];
+    } else {
+      m.failAt("inertia", "needs 3 numbers [Ixx, Iyy, Izz] or 6 [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] (kg m^2)");
+    }
+    Eigen::SelfAdjointEigenSolver<Mat3> eig(s.inertia);
+    if (!(eig.eigenvalues().minCoeff() > 0)) m.failAt("inertia", "is not positive definite");
+  } else {
+    m.failAt("inertia", "is missing: [Ixx, Iyy, Izz] about the mass centre (kg m^2)");
+  }
+  s.addedMass = vec(m, "added_mass", Vec3::Zero());
+  s.addedInertia = vec(m, "added_inertia", Vec3::Zero());
+  if (s.addedMass.minCoeff() < 0) m.failAt("added_mass", "must not be negative");
+  if (s.addedInertia.minCoeff() < 0) m.failAt("added_inertia", "must not be negative");
+  s.canopyPoint = vec(m, "canopy_point", Vec3::Zero());
+  s.payloadPoint = vec(m, "payload_point", Vec3::Zero());
+  s.payloadDragArea = m.number("payload_drag_area", 0.0);
+  s.lineDragArea = m.number("line_drag_area", 0.0);
+  if (s.payloadDragArea < 0) m.failAt("payload_drag_area", "must not be negative");
+  if (s.lineDragArea < 0) m.failAt("line_drag_area", "must not be negative");
+  s.airDensity = m.positive("air_density", s.airDensity);
+  s.gravity = m.number("gravity", s.gravity);
+  m.finish({"mass", "inertia", "added_mass", "added_inertia", "canopy_point", "payload_point",
+            "payload_drag_area", "line_drag_area", "air_density", "gravity"});
+}
+
+void readAero(const YamlMap& m, AeroTable& a) {
+  a.area = m.positive("area");
+  a.span = m.positive("span");
+  a.chord = m.positive("chord");
+  for (double deg : m.numbers("alpha")) a.alpha.push_back(deg * kDeg);
+  a.CL = m.numbers("CL");
+  a.CD = m.numbers("CD");
+  a.Cm = m.has("Cm") ? m.numbers("Cm") : std::vector<double>(a.alpha.size(), 0.0);
+  a.CL_ds = m.number("CL_brake", 0.0);
+  a.CD_ds = m.number("CD_brake", 0.0);
+  a.Cm_ds = m.number("Cm_brake", 0.0);
+  a.Cm_q = m.number("Cm_q", 0.0);
+  a.CY_beta = m.number("CY_beta", 0.0);
+  a.Cl_beta = m.number("Cl_beta", 0.0);
+  a.Cn_beta = m.number("Cn_beta", 0.0);
+  a.Cl_p = m.number("Cl_p", 0.0);
+  a.Cn_r = m.number("Cn_r", 0.0);
+  a.Cl_da = m.number("Cl_differential_brake", 0.0);
+  a.Cn_da = m.number("Cn_differential_brake", 0.0);
+  m.finish({"area", "span", "chord", "alpha", "CL", "CD", "Cm", "CL_brake", "CD_brake", "Cm_brake", "Cm_q",
+            "CY_beta", "Cl_beta", "Cn_beta", "Cl_p", "Cn_r", "Cl_differential_brake",
+            "Cn_differential_brake"});
+  try {
+    a.check("aerodynamics");
+  } catch (const InputError& e) {
+    m.fail(e.what());
+  }
+}
+
+void readWind(const YamlMap& m, Wind& w) {
+  w.steady = vec(m, "steady", Vec3::Zero());
+  w.shearPerMetre = vec(m, "shear", Vec3::Zero());
+  if (m.has("gust")) {
+    const YamlMap g = m.map("gust");
+    w.gustPeak = vec(g, "peak", Vec3::Zero());
+    w.gustStart = g.number("start", 0.0);
+    w.gustDuration = g.positive("duration");
+    g.finish({"peak", "start", "duration"});
+  }
+  m.finish({"steady", "shear", "gust"});
+}
+
+void readInitial(const YamlMap& m, FlightState& x) {
+  const auto p = m.vec3("position");  // north, east, altitude
+  if (!(p[2] >= 0)) m.failAt("position", "altitude (the third number) must not be negative");
+  x.position = Vec3(p[0], p[1], -p[2]);
+  const double heading = m.number("heading", 0.0) * kDeg;
+  const double pitch = m.number("pitch", 0.0) * kDeg;
+  x.attitude = Quat(Eigen::AngleAxisd(heading, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()));
+  x.velocity = Vec3(m.positive("airspeed"), 0, 0);
+  m.finish({"position", "heading", "pitch", "airspeed"});
+}
+
+void readBrakes(const YamlMap& m, BrakeSchedule& b) {
+  b.time = m.numbers("time");
+  b.left = m.numbers("left");
+  b.right = m.numbers("right");
+  m.finish({"time", "left", "right"});
+  if (b.left.size() != b.time.size() || b.right.size() != b.time.size())
+    m.fail(fmt::format("'left' and 'right' need one value per 'time' ({})", b.time.size()));
+  for (std::size_t i = 0; i < b.time.size(); ++i) {
+    if (i > 0 && !(b.time[i] > b.time[i - 1])) m.failAt("time", "must increase strictly");
+    for (const auto* col : {&b.left, &b.right})
+      if (!((*col)[i] >= 0 && (*col)[i] <= 1))
+        m.fail(fmt::format("brake entry {} is {}; valid: 0 (off) to 1 (full)", i + 1, (*col)[i]));
+  }
+}
+
+}  // namespace
+
+Controls BrakeSchedule::at(double t) const {
+  if (time.empty()) return {};
+  if (t <= time.front()) return {left.front(), right.front()};
+  if (t >= time.back()) return {left.back(), right.back()};
+  std::size_t i = 1;
+  while (time[i] < t) ++i;
+  const double s = (t - time[i - 1]) / (time[i] - time[i - 1]);
+  return {(1 - s) * left[i - 1] + s * left[i], (1 - s) * right[i - 1] + s * right[i]};
+}
+
+FlightCase readFlightString(const std::string& yaml, const std::string& name,
+                            const std::vector<std::string>& overrides) {
+  structure::requireUtf8Text(yaml, name);
+  YAML::Node root = structure::parseDocument(yaml, name);
+  for (const auto& o : overrides) structure::applyOverride(root, o);
+  structure::checkDocument(root, name);
+  if (!root.IsMap()) throw InputError(fmt::format("{}: a flight file is a mapping of sections", name));
+  const YamlMap top(root, name, "");
+  FlightCase c;
+  c.file = name;
+  readSystem(top.map("system"), c.system);
+  readAero(top.map("aerodynamics"), c.system.aero);
+  if (top.has("wind")) readWind(top.map("wind"), c.wind);
+  readInitial(top.map("start"), c.initial);
+  if (top.has("brakes")) readBrakes(top.map("brakes"), c.brakes);
+  if (top.has("time")) {
+    const YamlMap t = top.map("time");
+    c.endTime = t.positive("end", c.endTime);
+    c.step = t.positive("step", c.step);
+    c.outputInterval = t.positive("output_interval", c.outputInterval);
+    c.stopAtGround = t.boolean("stop_at_ground", c.stopAtGround);
+    t.finish({"end", "step", "output_interval", "stop_at_ground"});
+    if (c.step > c.outputInterval) t.failAt("step", "must not exceed output_interval");
+    if (c.endTime / c.step > 1e8) t.failAt("step", "makes more than 1e8 steps");
+  }
+  top.finish({"system", "aerodynamics", "wind", "start", "brakes", "time"});
+  return c;
+}
+
+FlightCase readFlightFile(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{}: cannot open the flight file", file.string()));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return readFlightString(ss.str(), file.string(), overrides);
+}
+
+}  // namespace fsi::flight

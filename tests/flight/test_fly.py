@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""ctest cli.fly: `fsi fly` and `fsi plot` on tests/flight/uav-glide.yaml (a few seconds).
+
+Checks: the run lands and writes trajectory.csv and summary.json; in the steady straight glide before the
+brake (20-28 s) the glide angle over the ground is the force balance's, tan(gamma) = (CD + (CD A)_payload+lines
+/ S) / CL with the CL, CD the run reports at that instant, and the airspeed is sqrt(2 W / (rho S C_R)); the
+right brake turns the system right (heading increases); `fsi plot` draws the three pictures; bad input gets
+exit 2 with the file, line and key.
+Usage: test_fly.py FSI WORK_DIR
+"""
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def fail(msg):
+    print("FAIL:", msg)
+    sys.exit(1)
+
+
+def main(fsi, work):
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    flight = os.path.join(HERE, "uav-glide.yaml")
+    out = os.path.join(work, "glide")
+    r = subprocess.run([fsi, "fly", flight, "--out", out, "-q"], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail(f"fsi fly exited {r.returncode}: {r.stderr}")
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    if not summary["landed"]:
+        fail("did not land")
+    rows = list(csv.DictReader(open(os.path.join(out, "trajectory.csv"))))
+    glide = [r for r in rows if 20.0 <= float(r["time_s"]) <= 28.0]
+    if len(glide) < 50:
+        fail(f"{len(glide)} rows between 20 and 28 s")
+    S, rho, W = 1.5, 1.225, 2.6 * 9.80665
+    for r in glide[::20]:
+        cl, cd = float(r["CL"]), float(r["CD"])
+        cd_sys = cd + (0.02 + 0.01) / S
+        tan_gamma = float(r["descent_rate_m_s"]) / float(r["ground_speed_m_s"])
+        if abs(tan_gamma / (cd_sys / cl) - 1) > 2e-3:
+            fail(f"t = {r['time_s']}: tan(glide) {tan_gamma:.6f}, force balance CD/CL {cd_sys / cl:.6f}")
+        v = math.sqrt(2 * W / (rho * S * math.hypot(cl, cd_sys)))
+        if abs(float(r["airspeed_m_s"]) / v - 1) > 2e-3:
+            fail(f"t = {r['time_s']}: airspeed {r['airspeed_m_s']}, steady glide {v:.5f}")
+    yaw = [float(r["yaw_deg"]) for r in rows if 30.0 <= float(r["time_s"]) <= 34.0]
+    if not (yaw[-1] > yaw[0] + 5):
+        fail(f"the right brake does not turn right: heading {yaw[0]:.1f} -> {yaw[-1]:.1f} deg")
+    r = subprocess.run([fsi, "plot", out], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail(f"fsi plot exited {r.returncode}: {r.stderr}")
+    for png in ("flight_path.png", "ground_track.png", "flight_history.png"):
+        if not os.path.getsize(os.path.join(out, "plots", png)) > 10000:
+            fail(f"no {png}")
+    # Bad input: exit 2, located.
+    bad = os.path.join(work, "bad.yaml")
+    text = open(flight).read()
+    for old, new, expect in (("  mass: 2.6 ", "  mas: 2.6 ", "mas"),
+                             ("  area: 1.5", "  area: -1.5", "area"),
+                             ("  airspeed: 8", "  airspeed: 8\n  bank: 3", "bank"),
+                             ("alpha: [-10, -5, 0", "alpha: [-10, -15, 0", "alpha")):
+        open(bad, "w").write(text.replace(old, new))
+        r = subprocess.run([fsi, "fly", bad, "--out", os.path.join(work, "bad")], capture_output=True, text=True)
+        if r.returncode != 2 or "bad.yaml:" not in r.stderr or expect not in r.stderr:
+            fail(f"{new.strip()!r}: exit {r.returncode}, {r.stderr.strip()!r}")
+    r = subprocess.run([fsi, "fly", flight, "--out", os.path.join(work, "set"), "-q", "--set", "time.end=5"],
+                       capture_output=True, text=True)
+    if r.returncode != 0 or json.load(open(os.path.join(work, "set", "summary.json")))["landed"]:
+        fail(f"--set time.end=5: exit {r.returncode}, {r.stderr}")
+    print("cli.fly: passed")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])

@@ -123,6 +123,40 @@ void readBrakes(const YamlMap& m, BrakeSchedule& b) {
   }
 }
 
+PidGains readGains(const YamlMap& m, const std::string& key, PidGains g) {
+  if (!m.has(key)) return g;
+  const YamlMap k = m.map(key);
+  g.kp = k.number("kp", g.kp);
+  g.ki = k.number("ki", g.ki);
+  g.kd = k.number("kd", g.kd);
+  g.integralLimit = k.positive("integral_limit", g.integralLimit);
+  k.finish({"kp", "ki", "kd", "integral_limit"});
+  return g;
+}
+
+void readGuidance(const YamlMap& m, GuidanceParams& g) {
+  const YAML::Node list = m.raw("waypoints");
+  if (!list.IsSequence() || list.size() == 0)
+    m.failAt("waypoints", "needs a list of [north, east] points in metres, the last one the target");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = m.childPath("waypoints") + fmt::format("[{}]", i);
+    if (!list[i].IsSequence() || list[i].size() != 2)
+      throw InputError(structure::locate(m.file(), list[i], path) +
+                       ": a waypoint is [north, east] in metres");
+    g.waypoints.push_back({structure::asNumber(list[i][0], m.file(), path + "[0]"),
+                           structure::asNumber(list[i][1], m.file(), path + "[1]")});
+  }
+  g.acceptanceRadius = m.positive("acceptance_radius", g.acceptanceRadius);
+  g.course = readGains(m, "course_gains", g.course);
+  g.maxYawRate = m.positive("max_yaw_rate", g.maxYawRate);
+  g.yawRate = readGains(m, "yaw_rate_gains", g.yawRate);
+  g.maxBrake = m.positive("max_brake", g.maxBrake);
+  if (g.maxBrake > 1) m.failAt("max_brake", "is a fraction of the full brake: at most 1");
+  g.rate = m.positive("rate", g.rate);
+  m.finish({"waypoints", "acceptance_radius", "course_gains", "max_yaw_rate", "yaw_rate_gains", "max_brake",
+            "rate"});
+}
+
 }  // namespace
 
 Controls BrakeSchedule::at(double t) const {
@@ -150,6 +184,10 @@ FlightCase readFlightString(const std::string& yaml, const std::string& name,
   if (top.has("wind")) readWind(top.map("wind"), c.wind);
   readInitial(top.map("start"), c.initial);
   if (top.has("brakes")) readBrakes(top.map("brakes"), c.brakes);
+  if (top.has("guidance")) {
+    if (top.has("brakes")) top.failAt("guidance", "and 'brakes' both set the brakes: keep one");
+    readGuidance(top.map("guidance"), c.guidance);
+  }
   if (top.has("time")) {
     const YamlMap t = top.map("time");
     c.endTime = t.positive("end", c.endTime);
@@ -160,7 +198,7 @@ FlightCase readFlightString(const std::string& yaml, const std::string& name,
     if (c.step > c.outputInterval) t.failAt("step", "must not exceed output_interval");
     if (c.endTime / c.step > 1e8) t.failAt("step", "makes more than 1e8 steps");
   }
-  top.finish({"system", "aerodynamics", "wind", "start", "brakes", "time"});
+  top.finish({"system", "aerodynamics", "wind", "start", "brakes", "guidance", "time"});
   return c;
 }
 

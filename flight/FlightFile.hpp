@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "flight/FlightSystem.hpp"
+#include "flight/Guidance.hpp"
 
 namespace fsi::flight {
 
@@ -23,6 +24,7 @@ struct FlightCase {
   Wind wind;
   FlightState initial;
   BrakeSchedule brakes;
+  GuidanceParams guidance;      ///< waypoints given: the autopilot flies the brakes (no `brakes` table then)
   double endTime = 600;         ///< [s]
   double step = 0.01;           ///< RK4 step [s]
   double outputInterval = 0.1;  ///< [s]

@@ -47,8 +47,12 @@ FlightResult runFlight(const FlightCase& c, const std::filesystem::path& outDir,
   csv << "time_s,north_m,east_m,altitude_m,roll_deg,pitch_deg,yaw_deg,airspeed_m_s,alpha_deg,beta_deg,"
          "ground_speed_m_s,descent_rate_m_s,p_rad_s,q_rad_s,r_rad_s,brake_left,brake_right,CL,CD\n";
   std::vector<Row> rows;
+  Guidance guidance(c.guidance);
+  auto controls = [&](double time, const FlightState& state) {
+    return c.guidance.enabled() ? guidance.update(time, state) : c.brakes.at(time);
+  };
   auto record = [&](double t, const FlightState& x) {
-    Row r{t, x.position, eulerDeg(x.attitude), x.attitude * x.velocity, {}, c.brakes.at(t)};
+    Row r{t, x.position, eulerDeg(x.attitude), x.attitude * x.velocity, {}, controls(t, x)};
     stateRate(c.system, c.wind, r.brakes, t, x, &r.air);
     rows.push_back(r);
     csv << fmt::format(
@@ -67,7 +71,7 @@ FlightResult runFlight(const FlightCase& c, const std::filesystem::path& outDir,
   nextOut = c.outputInterval;
   for (long i = 0; i < steps; ++i) {
     const double dt = std::min(c.step, c.endTime - t);
-    const FlightState y = rungeKuttaStep(c.system, c.wind, c.brakes.at(t), t, dt, x);
+    const FlightState y = rungeKuttaStep(c.system, c.wind, controls(t, x), t, dt, x);
     if (!finite(y))
       throw std::runtime_error(
           fmt::format("{}: the flight state stopped being finite at t = {:.6g} s (last finite: altitude "
@@ -117,6 +121,13 @@ FlightResult runFlight(const FlightCase& c, const std::filesystem::path& outDir,
   j["descent_rate_end_m_s"] = res.descentRate;
   j["trajectory_rows"] = res.rows;
   j["step_s"] = c.step;
+  if (c.guidance.enabled()) {
+    const auto& target = c.guidance.waypoints.back();
+    j["waypoints_ne_m"] = c.guidance.waypoints;
+    j["target_ne_m"] = target;
+    j["miss_distance_m"] = std::hypot(res.landing.x() - target[0], res.landing.y() - target[1]);
+    j["waypoint_reached"] = guidance.waypoint();
+  }
   j["wind_steady_ned_m_s"] = {c.wind.steady.x(), c.wind.steady.y(), c.wind.steady.z()};
   j["integrator"] = "classical Runge-Kutta, 4th order";
   std::ofstream(outDir / "summary.json") << j.dump(1) << "\n";

@@ -52,6 +52,36 @@ def main(fsi, work):
     yaw = [float(r["yaw_deg"]) for r in rows if 30.0 <= float(r["time_s"]) <= 34.0]
     if not (yaw[-1] > yaw[0] + 5):
         fail(f"the right brake does not turn right: heading {yaw[0]:.1f} -> {yaw[-1]:.1f} deg")
+    # The steady turn at full right brake: the track's circle has the radius V_h / (heading rate).
+    full = os.path.join(work, "full-brake.yaml")
+    open(full, "w").write(open(flight).read().replace("right: [0, 0, 0.5, 0.5]", "right: [1, 1, 1, 1]"))
+    r = subprocess.run([fsi, "fly", full, "--out", os.path.join(work, "full"), "-q"], capture_output=True, text=True)
+    turn = [r for r in csv.DictReader(open(os.path.join(work, "full", "trajectory.csv"))) if float(r["time_s"]) > 60]
+    north = [float(r["north_m"]) for r in turn]
+    east = [float(r["east_m"]) for r in turn]
+    radius = 0.25 * (max(north) - min(north) + max(east) - min(east))
+    last = turn[-1]
+    phi, theta = math.radians(float(last["roll_deg"])), math.radians(float(last["pitch_deg"]))
+    heading_rate = (float(last["q_rad_s"]) * math.sin(phi) + float(last["r_rad_s"]) * math.cos(phi)) / math.cos(theta)
+    if abs(radius / (float(last["ground_speed_m_s"]) / heading_rate) - 1) > 0.02:
+        fail(f"full-brake turn: track radius {radius:.2f} m, V/heading rate "
+             f"{float(last['ground_speed_m_s']) / heading_rate:.2f} m")
+    # Guidance: homing through a waypoint onto the target lands within the orbit it ends in (2 R_turn) in calm
+    # air, within 2 R_turn plus the drift of one orbit in a 1.5 m/s cross wind.
+    guided = os.path.join(HERE, "uav-guided.yaml")
+    period = 2 * math.pi * radius / float(last["ground_speed_m_s"])
+    for wind, allowed in ((0.0, 2 * radius), (1.5, 2 * radius + 1.5 * period)):
+        gout = os.path.join(work, f"guided-{wind}")
+        r = subprocess.run([fsi, "fly", guided, "--out", gout, "-q", "--set", f"wind.steady=[0, {-wind}, 0]"],
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            fail(f"guided, wind {wind}: exit {r.returncode}: {r.stderr}")
+        s = json.load(open(os.path.join(gout, "summary.json")))
+        if s["waypoint_reached"] != 1 or not s["miss_distance_m"] <= allowed:
+            fail(f"guided, wind {wind} m/s: waypoint {s['waypoint_reached']}, miss {s['miss_distance_m']:.1f} m "
+                 f"(allowed {allowed:.1f} m)")
+        print(f"guided, cross wind {wind} m/s: lands {s['miss_distance_m']:.1f} m from the target "
+              f"(allowed {allowed:.1f} m; full-brake turn radius {radius:.1f} m)")
     r = subprocess.run([fsi, "plot", out], capture_output=True, text=True)
     if r.returncode != 0:
         fail(f"fsi plot exited {r.returncode}: {r.stderr}")

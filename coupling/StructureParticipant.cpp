@@ -18,8 +18,9 @@ namespace fsi::coupling {
 using structure::Scene;
 
 StructureParticipant::StructureParticipant(const std::filesystem::path& sceneFile,
-                                           const std::vector<std::string>& overrides)
-    : StructureParticipant(structure::loadScene(sceneFile, overrides)) {}
+                                           const std::vector<std::string>& overrides,
+                                           const ParticipantOptions& options)
+    : StructureParticipant(structure::loadScene(sceneFile, overrides), options) {}
 
 // One structural substep of the window as SubcycledStructure asks for it: the CentralDifference steps up to
 // the substep's end (normally one step; more if the stable step fell since the window's start), each under
@@ -129,7 +130,11 @@ class StructureParticipant::Relaxation final : public RelaxationStepper {
   Eigen::VectorXd velocity_;
 };
 
-StructureParticipant::StructureParticipant(Scene scene) : scene_(std::make_unique<Scene>(std::move(scene))) {
+StructureParticipant::StructureParticipant(Scene scene, const ParticipantOptions& options)
+    : scene_(std::make_unique<Scene>(std::move(scene))), kind_(options.loadKind) {
+  if (options.minSubcycles < 1)
+    throw std::invalid_argument("StructureParticipant: subcycles = " + std::to_string(options.minSubcycles) +
+                                ", valid: >= 1");
   if (!scene_->couplingInterface)
     throw InputError(scene_->file.string() +
                      ": a coupled structure needs `coupling: {interface: <triangles>}`");
@@ -146,9 +151,19 @@ StructureParticipant::StructureParticipant(Scene scene) : scene_(std::make_uniqu
   cd_ = std::make_unique<structure::CentralDifference>(*scene_->model, std::move(effects),
                                                        scene_->constraints, scene_->time.integrator);
   mesh_ = sceneInterface(*scene_);  // reference coordinates, points in the order of the interface nodes
-  loadStart_ = loadEnd_ = Eigen::VectorXd::Zero(Eigen::Index(ci.nodes.size()));
+  loadStart_ = loadEnd_ = Eigen::VectorXd::Zero(
+      Eigen::Index(structure::valuesPerInterface(kind_, std::size_t(numInterfaceNodes()))));
   stepper_ = std::make_unique<Substeps>(*scene_, *cd_, *load_);
-  makeSubcycling();
+  SubcyclingOptions sub;
+  sub.interpolation = ci.loadInWindow;
+  sub.safety = 1.0;  // Substeps::stableTimeStep() is the integrator's step, safety included
+  sub.minSubsteps = options.minSubcycles;
+  subcycled_ = std::make_unique<SubcycledStructure>(*stepper_, sub);
+  if (options.mode == StructureMode::Equilibrium) {
+    relaxation_ = std::make_unique<Relaxation>(*scene_, *cd_, *load_, *stepper_);
+    // checks the step count
+    equilibrium_ = std::make_unique<EquilibriumStructure>(*relaxation_, options.equilibrium);
+  }
   cd_->evaluateForces(false);
   saveCheckpoint();
 }
@@ -156,14 +171,6 @@ StructureParticipant::StructureParticipant(Scene scene) : scene_(std::make_uniqu
 StructureParticipant::~StructureParticipant() = default;
 StructureParticipant::StructureParticipant(StructureParticipant&&) noexcept = default;
 StructureParticipant& StructureParticipant::operator=(StructureParticipant&&) noexcept = default;
-
-void StructureParticipant::makeSubcycling() {
-  SubcyclingOptions o;
-  o.interpolation = scene_->couplingInterface->loadInWindow;
-  o.safety = 1.0;  // Substeps::stableTimeStep() is the integrator's step, safety included
-  o.minSubsteps = minSubcycles_;
-  subcycled_ = std::make_unique<SubcycledStructure>(*stepper_, o);
-}
 
 int StructureParticipant::subcyclesFor(double dt) const {
   return subcycled_->substepsFor(dt);
@@ -173,21 +180,15 @@ void StructureParticipant::setWindowLoads(structure::InterfaceLoadKind kind, con
                                           const double* end, std::size_t size) {
   const std::size_t n = std::size_t(numInterfaceNodes()), expected = structure::valuesPerInterface(kind, n);
   if (size != expected)
-    throw std::invalid_argument(
-        "StructureParticipant: " + std::to_string(size) + " load values for " + structure::toString(kind) +
-        " on " + std::to_string(n) + " interface nodes; expected " + std::to_string(expected) +
-        (kind == structure::InterfaceLoadKind::Pressure ? " (nodal forces need setLoadKind(NodalForces))"
-                                                        : ""));
+    throw std::invalid_argument("StructureParticipant: " + std::to_string(size) + " load values for " +
+                                structure::toString(kind) + " on " + std::to_string(n) +
+                                " interface nodes; expected " + std::to_string(expected) +
+                                (kind == structure::InterfaceLoadKind::Pressure
+                                     ? " (nodal forces need ParticipantOptions::loadKind NodalForces)"
+                                     : ""));
   kind_ = kind;
   loadStart_ = Eigen::Map<const Eigen::VectorXd>(start, Eigen::Index(size));
   loadEnd_ = Eigen::Map<const Eigen::VectorXd>(end, Eigen::Index(size));
-}
-
-void StructureParticipant::setLoadKind(structure::InterfaceLoadKind kind) {
-  if (kind == kind_) return;
-  kind_ = kind;  // the window's loads of the other kind mean nothing now
-  const auto size = Eigen::Index(structure::valuesPerInterface(kind, std::size_t(numInterfaceNodes())));
-  loadStart_ = loadEnd_ = Eigen::VectorXd::Zero(size);
 }
 
 void StructureParticipant::setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd) {
@@ -201,23 +202,6 @@ void StructureParticipant::setForces(const std::vector<double>& fStart, const st
   if (fStart.size() != fEnd.size())
     throw std::invalid_argument("StructureParticipant: forces at the window's start and end differ in size");
   setWindowLoads(structure::InterfaceLoadKind::NodalForces, fStart.data(), fEnd.data(), fStart.size());
-}
-
-void StructureParticipant::setMinSubcycles(int n) {
-  if (n < 1)
-    throw std::invalid_argument("StructureParticipant: subcycles = " + std::to_string(n) + ", valid: >= 1");
-  minSubcycles_ = n;
-  makeSubcycling();
-}
-
-void StructureParticipant::setStructureMode(StructureMode mode, EquilibriumOptions equilibrium) {
-  if (mode == StructureMode::TimeAccurate) {
-    equilibrium_.reset();
-    relaxation_.reset();
-    return;
-  }
-  relaxation_ = std::make_unique<Relaxation>(*scene_, *cd_, *load_, *stepper_);
-  equilibrium_ = std::make_unique<EquilibriumStructure>(*relaxation_, equilibrium);  // checks the step count
 }
 
 EquilibriumReport StructureParticipant::equilibriumReport() const {

@@ -11,18 +11,22 @@
 // writes the load of that instant into the InterfaceLoad it owns; the InterfacePressure effect it adds to the
 // integrator only reads it.
 //
+// How it runs its windows is fixed when it is made (ParticipantOptions: the kind of solve()'s loads, the
+// least number of substeps, time-accurate or equilibrium windows); nothing of it is set afterwards.
+//
 // The load is a pressure per interface node (follower load on the current geometry) or nodal forces, 3 per
 // interface node (the conservative transfer of the fluid's face forces; what the OpenFOAM adapter uses).
-// Which of the two solve() receives is stated once (setLoadKind), never guessed from the vector's length.
+// Which of the two solve() receives is stated once (ParticipantOptions::loadKind), never guessed from the
+// vector's length.
 //
-// In equilibrium mode (setStructureMode) a window does not integrate the motion over Δt: the structure
-// relaxes under the window's end load for N damped pseudo-steps (coupling/scheme/Equilibrium) and its clock
-// is then set to the window's end; interfaceVelocity() is the window's displacement change over Δt.
+// In equilibrium mode (ParticipantOptions::mode) a window does not integrate the motion over Δt: the
+// structure relaxes under the window's end load for N damped pseudo-steps (coupling/scheme/Equilibrium) and
+// its clock is then set to the window's end; interfaceVelocity() is the window's displacement change over Δt.
 //
 // Call sequence per fluid step [t, t + Δt]:
 //   setPressure(p(t), p(t+Δt)) or setForces(f(t), f(t+Δt));  advance(Δt);  interfaceDisplacement();
-//   (+ restoreCheckpoint() to iterate), or, as a StructureSolver of a CouplingScheme: setLoadKind() once,
-//   then solve(t, Δt, loads(t), loads(t+Δt)) per pass.
+//   (+ restoreCheckpoint() to iterate), or, as a StructureSolver of a CouplingScheme (made with the loads'
+//   kind in its options): solve(t, Δt, loads(t), loads(t+Δt)) per pass.
 
 #include <Eigen/Dense>
 #include <filesystem>
@@ -51,11 +55,26 @@ class StructureUnstable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// How a participant runs its windows, given once to its constructor (the adapter's `subcycles`,
+/// `structureMode`, `equilibrium*` options; its loads are nodal forces).
+struct ParticipantOptions {
+  /// What the loads of solve() are: a pressure per interface node, or nodal forces, 3 per node.
+  structure::InterfaceLoadKind loadKind = structure::InterfaceLoadKind::Pressure;
+  /// At least this many structural steps per fluid step (1 = as the stability limit allows); < 1 makes the
+  /// constructor throw std::invalid_argument. Used to show that subcycling does not change a coupled answer
+  /// beyond the time-discretisation error.
+  int minSubcycles = 1;
+  /// Time-accurate (default) or equilibrium windows, the latter with `equilibrium.steps` damped pseudo-steps
+  /// per window (< 1 throws std::invalid_argument), started from rest or carried over.
+  StructureMode mode = StructureMode::TimeAccurate;
+  EquilibriumOptions equilibrium;
+};
+
 class StructureParticipant final : public StructureSolver {
  public:
-  explicit StructureParticipant(structure::Scene scene);
-  StructureParticipant(const std::filesystem::path& sceneFile,
-                       const std::vector<std::string>& overrides = {});
+  explicit StructureParticipant(structure::Scene scene, const ParticipantOptions& options = {});
+  StructureParticipant(const std::filesystem::path& sceneFile, const std::vector<std::string>& overrides = {},
+                       const ParticipantOptions& options = {});
   ~StructureParticipant() override;
   StructureParticipant(StructureParticipant&&) noexcept;
   StructureParticipant& operator=(StructureParticipant&&) noexcept;
@@ -70,24 +89,17 @@ class StructureParticipant final : public StructureSolver {
   /// reads from the time directory's name, rounded to its timePrecision (the state file keeps the exact one).
   void alignTime(double t);
   /// Structural steps a fluid step of length dt takes: subcycleCount() of the stable step at the last force
-  /// evaluation (advance() evaluates it at the window's start state), at least setMinSubcycles().
+  /// evaluation (advance() evaluates it at the window's start state), at least
+  /// ParticipantOptions::minSubcycles.
   int subcyclesFor(double dt) const;
   long structuralSteps() const { return cd_->steps(); }
 
-  /// What the loads of solve() are (default: Pressure). setPressure/setForces set it too.
-  void setLoadKind(structure::InterfaceLoadKind kind);
+  /// What the loads of solve() are (ParticipantOptions::loadKind). setPressure/setForces set it too.
   structure::InterfaceLoadKind loadKind() const { return kind_; }
   /// Pressure at the interface nodes at the start and the end of the next fluid step [Pa].
   void setPressure(const std::vector<double>& pStart, const std::vector<double>& pEnd);
   /// Nodal forces (3 per interface node, xyz) at the start and the end of the next fluid step [N].
   void setForces(const std::vector<double>& fStart, const std::vector<double>& fEnd);
-  /// At least this many structural steps per fluid step (1 = as the stability limit allows); n < 1 throws
-  /// std::invalid_argument. Used to show that subcycling does not change a coupled answer beyond the
-  /// time-discretisation error.
-  void setMinSubcycles(int n);
-  /// Time-accurate (default) or equilibrium windows, the latter with `equilibrium.steps` damped pseudo-steps
-  /// per window (< 1 throws std::invalid_argument), started from rest or carried over.
-  void setStructureMode(StructureMode mode, EquilibriumOptions equilibrium = {});
   StructureMode structureMode() const {
     return equilibrium_ ? StructureMode::Equilibrium : StructureMode::TimeAccurate;
   }
@@ -154,7 +166,6 @@ class StructureParticipant final : public StructureSolver {
   class Relaxation;  // the RelaxationStepper over cd_ (equilibrium mode)
   void setWindowLoads(structure::InterfaceLoadKind kind, const double* start, const double* end,
                       std::size_t size);
-  void makeSubcycling();
 
   // Held on the heap, like everything the stepper, the effect and the integrator refer to, so that a
   // participant can be moved.
@@ -172,7 +183,6 @@ class StructureParticipant final : public StructureSolver {
   InterfaceMesh mesh_;
   structure::InterfaceLoadKind kind_ = structure::InterfaceLoadKind::Pressure;
   Eigen::VectorXd loadStart_, loadEnd_;  ///< the window's loads, of kind_
-  int minSubcycles_ = 1;
   std::unique_ptr<structure::SceneFrames> frames_;
   // Histories for /tables/energy and /tables/probes of the results file, column by column.
   std::vector<std::string> probeNames_;

@@ -9,6 +9,12 @@
 //                                        diagonal: sparse AND reproduces linear fields (for large meshes)
 // and the conservative (transpose) transfer F_s = Hᵀ F_t carries forces back the other way with the same
 // virtual work. See docs/PROJECTION.md for the directions, the quadrature and the measured accuracy.
+//
+// This class is the set-up all variants share — the target quadrature (projection/Quadrature), the closest
+// source point of every quadrature point with the side rule (projection/SourcePoints), the gap correction's
+// gradients (projection/GapGradient) — and the defect correction on top; each variant is a class of its own
+// in coupling/mapping/projection/ (ConsistentProjection, LumpedProjection, DualProjection on the shared row
+// assembly of ProjectionRows), chosen through ProjectionRegistry.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -22,6 +28,8 @@
 #include "coupling/interface/SurfaceSearch.hpp"
 
 namespace fsi::coupling {
+
+class ProjectionVariant;
 
 /// Auto: Consistent up to kAutoConsistentMaxNodes target nodes, Dual above (same accuracy, sparse, and its
 /// apply stays above 10⁷ nodes/s where the consistent solves fall below it; docs/PROJECTION.md).
@@ -155,6 +163,9 @@ class L2Projection {
   /// reported, not fatal. Throws fsi::InputError for invalid meshes (bad faces, no faces).
   L2Projection(const InterfaceMesh& source, const InterfaceMesh& target,
                const ProjectionOptions& options = {});
+  ~L2Projection();
+  L2Projection(L2Projection&&) noexcept;
+  L2Projection& operator=(L2Projection&&) noexcept;
 
   int sourceSize() const { return ns_; }
   int targetSize() const { return nt_; }
@@ -172,12 +183,12 @@ class L2Projection {
 
   /// C (target nodes × source nodes; for Dual, C_ψ with the dual test functions) and the consistent target
   /// mass matrix M_t (not assembled for Dual: no entries).
-  const SparseRows& coupling() const { return c_; }
-  const SparseRows& targetMass() const { return m_; }
+  const SparseRows& coupling() const;
+  const SparseRows& targetMass() const;
   /// Per target node: 1 when its whole support mapped (see ProjectionReport::unmappedTargetNodes).
-  const std::vector<unsigned char>& targetNodeMapped() const { return nodeMapped_; }
+  const std::vector<unsigned char>& targetNodeMapped() const;
   /// Row sums of M_t (the lumped mass, ∫ N_i dΓ).
-  const Eigen::VectorXd& lumpedMass() const { return lumped_; }
+  const Eigen::VectorXd& lumpedMass() const;
   /// H itself as a sparse matrix. Lumped, Dual: diag⁻¹ C, as sparse as C. Consistent: M_t⁻¹ C is dense in
   /// principle (the inverse of a mass matrix has no zero entries), so it is solved column by column and
   /// entries below dropTolerance × (largest entry in its row) are dropped: for inspection and small meshes;
@@ -186,29 +197,11 @@ class L2Projection {
   SparseRows operatorMatrix(double dropTolerance = 0.0) const;
 
  private:
-  // The uncorrected H and Hᵀ.
-  void applyBase(const double* us, double* ut, int components) const;
-  void applyTransposeBase(const double* ft, double* fs, int components) const;
-  template <int K>
-  void applyK(const double* us, double* ut) const;
-  template <int K>
-  void applyTransposeK(const double* ft, double* fs) const;
-  template <int K>
-  void solveInPlace(double* z) const;  // z ← (L D Lᵀ)⁻¹ z in the permuted ordering
-
   int ns_ = 0, nt_ = 0;
   MassMatrix mass_;
   ProjectionReport report_;
-  SparseRows c_, m_;
-  Eigen::VectorXd lumped_, lumpedInv_;
-  // Consistent: P M_t Pᵀ = L D Lᵀ, target row i sits at perm_[i] of the permuted ordering. L is kept in
-  // compressed columns (unit diagonal not stored) for hand-written solves that handle 3 components per
-  // pass over L.
-  std::vector<int> perm_, lp_, li_;
-  std::vector<double> lx_, dinv_;
-  std::vector<unsigned char> nodeMapped_;
-  mutable std::vector<double> scratch_;
-  std::unique_ptr<L2Projection> back_;  // P (target → source) of the defect correction, or null
+  std::unique_ptr<ProjectionVariant> variant_;  // the uncorrected H and Hᵀ (coupling/mapping/projection/)
+  std::unique_ptr<L2Projection> back_;          // P (target → source) of the defect correction, or null
   mutable std::vector<double> defectSource_, defectTarget_;
 };
 

@@ -87,8 +87,9 @@ struct DrumSettings {
 /// The coupled run; `acceleration` for the implicit scheme (null for the staggered one).
 inline DrumRun runAddedMassDrum(const DrumSettings& c, std::unique_ptr<coupling::Acceleration> acceleration) {
   using namespace fsi::coupling;
-  StructureParticipant s(structure::loadSceneFromString(addedMassDrumScene(), "drum.yaml"));
-  s.setMinSubcycles(c.minSubcycles);
+  ParticipantOptions options;
+  options.minSubcycles = c.minSubcycles;
+  StructureParticipant s(structure::loadSceneFromString(addedMassDrumScene(), "drum.yaml"), options);
   AddedMassFluid fluid(s.numInterfaceNodes(), c.addedMass, 0.0, c.pressure);
   CouplingConfig cfg;
   cfg.kind = c.kind;

@@ -345,13 +345,16 @@ inline const char* sceneName(LoadInterpolation interp) {
                                                     : "linear";
 }
 
-inline std::unique_ptr<StructureParticipant> film(double densityFactor, LoadInterpolation interp) {
-  auto s = std::make_unique<StructureParticipant>(
+inline std::unique_ptr<StructureParticipant> film(double densityFactor, LoadInterpolation interp,
+                                                  int minSubcycles = 1) {
+  ParticipantOptions options;
+  options.loadKind = fsi::structure::InterfaceLoadKind::NodalForces;
+  options.minSubcycles = minSubcycles;
+  return std::make_unique<StructureParticipant>(
       fsi::structure::loadSceneFromString(kFilm, "film.yaml",
                                           {"materials.film.density=" + std::to_string(1000.0 * densityFactor),
-                                           std::string("coupling.load_in_window=") + sceneName(interp)}));
-  s->setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
-  return s;
+                                           std::string("coupling.load_in_window=") + sceneName(interp)}),
+      options);
 }
 
 constexpr double kFilmWindow = 1e-3;
@@ -424,8 +427,7 @@ using FilmFluidFactory =
     std::function<std::unique_ptr<FluidSolver>(const StructureParticipant& s, double mu)>;
 
 inline FilmRun coupledFilm(double mu, const FilmCoupling& c, const FilmFluidFactory& makeFluid = {}) {
-  auto s = film(1.0, c.interp);
-  s->setMinSubcycles(c.minSubcycles);
+  auto s = film(1.0, c.interp, c.minSubcycles);
   const fsi::structure::Nodes& N = s->scene().model->nodes;
   const std::vector<int>& nodes = s->scene().couplingInterface->nodes;
   const Eigen::Index n = 3 * Eigen::Index(nodes.size());

@@ -264,8 +264,8 @@ TEST(CouplingEquilibrium, CarriedPseudoMotionConvergesWhatTooFewStepsFromRestOnl
 
 TEST(CouplingEquilibrium, CarryFromRelaxesFromRestUntilItsTimeThenCarries) {
   // The set-up above with the carrying from window 100's end on: the windows up to there are the run from
-  // rest to the last bit (the same arithmetic), the ones after differ, and the carried motion then settles long
-  // before the run from rest does (measured: from rest 395 windows, carried from the start 97).
+  // rest to the last bit (the same arithmetic), the ones after differ, and the carried motion then settles
+  // long before the run from rest does (measured: from rest 395 windows, carried from the start 97).
   const double h = 1.0 / (kNodes + 1), kappa = 6.0 / (1.0 - h * h);
   CushionSetup rest, late;
   rest.relaxation = {1, EquilibriumStart::Rest};
@@ -398,9 +398,10 @@ struct DrumRun {
 };
 
 DrumRun runDrum(StructureMode mode, int windows, double window) {
-  StructureParticipant s(fsi::structure::loadSceneFromString(kDrum, "drum.yaml"));
-  s.setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
-  s.setStructureMode(mode);
+  ParticipantOptions options;
+  options.loadKind = fsi::structure::InterfaceLoadKind::NodalForces;
+  options.mode = mode;
+  StructureParticipant s(fsi::structure::loadSceneFromString(kDrum, "drum.yaml"), options);
   ConstantLoad fluid(pressureForces(s, 200.0));
   CouplingConfig cfg;
   cfg.kind = SchemeKind::Staggered;
@@ -452,18 +453,21 @@ TEST(CouplingEquilibriumFilm, ReachesStaticEquilibriumWhereTimeAccurateWindowsSt
 }
 
 TEST(CouplingEquilibriumFilm, ModeAndStepsAreChecked) {
-  StructureParticipant s(fsi::structure::loadSceneFromString(kDrum, "drum.yaml"));
-  EXPECT_EQ(s.structureMode(), StructureMode::TimeAccurate);
-  EXPECT_THROW(s.setStructureMode(StructureMode::Equilibrium, {0}), std::invalid_argument);
-  s.setStructureMode(StructureMode::Equilibrium, {7});
+  const auto make = [](StructureMode mode, int steps) {
+    ParticipantOptions options;
+    options.loadKind = fsi::structure::InterfaceLoadKind::NodalForces;
+    options.mode = mode;
+    options.equilibrium.steps = steps;
+    return StructureParticipant(fsi::structure::loadSceneFromString(kDrum, "drum.yaml"), options);
+  };
+  EXPECT_EQ(make(StructureMode::TimeAccurate, 100).structureMode(), StructureMode::TimeAccurate);
+  EXPECT_THROW(make(StructureMode::Equilibrium, 0), std::invalid_argument);
+  StructureParticipant s = make(StructureMode::Equilibrium, 7);
   EXPECT_EQ(s.structureMode(), StructureMode::Equilibrium);
-  s.setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
   const long before = s.structuralSteps();
   s.solve(0.0, 1e-3, VectorXd::Zero(3 * s.numInterfaceNodes()), pressureForces(s, 100.0));
   EXPECT_EQ(s.structuralSteps() - before, 7);
   EXPECT_EQ(s.equilibriumReport().steps, 7);
-  s.setStructureMode(StructureMode::TimeAccurate);
-  EXPECT_EQ(s.structureMode(), StructureMode::TimeAccurate);
 }
 
 TEST(CouplingEquilibrium, AnAddedMassMakesEquilibriumWindowsDivergeUnlessRelaxedOrIterated) {

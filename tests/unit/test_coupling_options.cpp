@@ -362,17 +362,26 @@ TEST(CouplingOptions, RangesAgreeWithTheLibraryChecks) {
               !throws([&] { CouplingScheme s(c, idle); }))
         << p;
   }
-  StructureParticipant drum(fsi::structure::loadSceneFromString(
-      fsi::test::drumScene("coupling: {interface: sheet}\ntime: {end: 1.0}\n"), "drum.yaml"));
-  for (const int n : {-1, 0, 1, 3})
-    EXPECT_EQ(accepted(with(minimal(), "subcycles", std::to_string(n))),
-              !throws([&] { drum.setMinSubcycles(n); }))
-        << n;
-  for (const int n : {-1, 0, 1, 100})
+  const auto drum = [](const ParticipantOptions& options) {
+    StructureParticipant s(
+        fsi::structure::loadSceneFromString(
+            fsi::test::drumScene("coupling: {interface: sheet}\ntime: {end: 1.0}\n"), "drum.yaml"),
+        options);
+  };
+  for (const int n : {-1, 0, 1, 3}) {
+    ParticipantOptions o;
+    o.minSubcycles = n;
+    EXPECT_EQ(accepted(with(minimal(), "subcycles", std::to_string(n))), !throws([&] { drum(o); })) << n;
+  }
+  for (const int n : {-1, 0, 1, 100}) {
+    ParticipantOptions o;
+    o.mode = StructureMode::Equilibrium;
+    o.equilibrium.steps = n;
     EXPECT_EQ(
         accepted(minimal({{"structureMode", {"equilibrium"}}, {"equilibriumSteps", {std::to_string(n)}}})),
-        !throws([&] { drum.setStructureMode(StructureMode::Equilibrium, {n}); }))
+        !throws([&] { drum(o); }))
         << n;
+  }
   for (const char* w : {"-1", "0", "1e-9", "0.5", "1", "1.000001", "2"}) {
     CouplingConfig c;
     c.kind = SchemeKind::Staggered;

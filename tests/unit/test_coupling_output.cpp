@@ -165,12 +165,13 @@ time: {end: 1.0}
 )");
 
 StructureParticipant drum() {
-  return StructureParticipant(fsi::structure::loadSceneFromString(kDrum, "drum.yaml"));
+  fsi::coupling::ParticipantOptions options;
+  options.loadKind = fsi::structure::InterfaceLoadKind::NodalForces;
+  return StructureParticipant(fsi::structure::loadSceneFromString(kDrum, "drum.yaml"), options);
 }
 
 // n windows of dt through solve() with the scheme's clock t0 + k dt and zero interface forces.
 void run(StructureParticipant& s, double t0, double dt, int from, int to, bool record = false) {
-  s.setLoadKind(fsi::structure::InterfaceLoadKind::NodalForces);
   const Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * s.numInterfaceNodes());
   for (int k = from; k < to; ++k) {
     s.solve(t0 + k * dt, dt, f, f);
@@ -183,8 +184,12 @@ void run(StructureParticipant& s, double t0, double dt, int from, int to, bool r
 TEST(StructureParticipantClock, WindowEndsComeFromTheSchemesClockWithoutDrift) {
   // 1000 windows of 0.01 s: summing the window size drifts to 9.999999999999831; the scheme's clock
   // t0 + k dt does not. (An unloaded drum: only the clock matters here.)
-  StructureParticipant s(fsi::structure::loadSceneFromString(
-      fsi::test::drumScene("coupling: {interface: sheet}\ntime: {end: 1.0}\n"), "drum.yaml"));
+  fsi::coupling::ParticipantOptions options;
+  options.loadKind = fsi::structure::InterfaceLoadKind::NodalForces;
+  StructureParticipant s(
+      fsi::structure::loadSceneFromString(
+          fsi::test::drumScene("coupling: {interface: sheet}\ntime: {end: 1.0}\n"), "drum.yaml"),
+      options);
   run(s, 0.0, 0.01, 0, 1000);
   EXPECT_LE(std::abs(s.time() - 10.0), 2e-15) << std::setprecision(17) << s.time();
   double sum = 0;

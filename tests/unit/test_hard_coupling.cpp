@@ -179,16 +179,16 @@ TEST(HardCoupling, FilmUnderAddedMassRatios10And100ConvergesToTheMonolithicFilm)
 // 2. Subcycling ratios 1, 10, 100, 1000: the drum film (ReducedCoupling.hpp coupledFilm: the participant's
 // CentralDifference through SubcycledStructure, IQN-ILS, BDF2 fluid of mu = 1, 200 Pa sin(ω t) with a period
 // of 40 windows) with a window of half its stable step at rest, so that one substep is stable, and the
-// substep count forced to N (setMinSubcycles). Stable means: the substep count is N in every window (N times
-// the windows in accepted structural steps), every window converges, the energy bookkeeping holds (balance
-// round-off, energy created in the elements < 1e-3 of the energy supplied, the step-to-step velocity energy
-// below its stable bound 4.3), and the answer converges with N: each tenfold refinement changes it at least
-// five times less than the last (an order of at least 0.7; measured: ten times, first order), towards the
-// monolithic film (density 2 rho, 1000 steps per window). What remains at N = 1000 is the coupling's window
-// error, which must be smaller than the error of the structure alone stepped once per window (the
-// time-discretisation error at this window). What breaks it: a subcycling that ignores the forced count,
-// interpolates the window's load wrongly within the window (the limit would not be the monolithic one), or
-// loses substeps' work.
+// substep count forced to N (ParticipantOptions::minSubcycles). Stable means: the substep count is N in every
+// window (N times the windows in accepted structural steps), every window converges, the energy bookkeeping
+// holds (balance round-off, energy created in the elements < 1e-3 of the energy supplied, the step-to-step
+// velocity energy below its stable bound 4.3), and the answer converges with N: each tenfold refinement
+// changes it at least five times less than the last (an order of at least 0.7; measured: ten times, first
+// order), towards the monolithic film (density 2 rho, 1000 steps per window). What remains at N = 1000 is the
+// coupling's window error, which must be smaller than the error of the structure alone stepped once per
+// window (the time-discretisation error at this window). What breaks it: a subcycling that ignores the forced
+// count, interpolates the window's load wrongly within the window (the limit would not be the monolithic
+// one), or loses substeps' work.
 TEST(HardCoupling, SubcyclingRatiosUpTo1000ConvergeToTheMonolithicFilm) {
   const double stable = film(1.0, LoadInterpolation::ConstantMean)->integrator().stableDt();
   const double mu = 1.0;

@@ -21,8 +21,14 @@ coupling: {interface: sheet}
 time: {end: 1.0}
 )");
 
-StructureParticipant drum() {
-  return StructureParticipant(structure::loadSceneFromString(kDrum, "drum.yaml"));
+StructureParticipant drum(const ParticipantOptions& options = {}) {
+  return StructureParticipant(structure::loadSceneFromString(kDrum, "drum.yaml"), options);
+}
+
+ParticipantOptions minSubcycles(int n) {
+  ParticipantOptions o;
+  o.minSubcycles = n;
+  return o;
 }
 
 }  // namespace
@@ -156,9 +162,8 @@ TEST(StructureParticipant, NodalForcesAreAppliedAsGivenWithTheWindowRule) {
 }
 
 TEST(StructureParticipant, MinimumSubcyclesAreTakenAndRestartStateRoundTrips) {
-  StructureParticipant s = drum();
+  StructureParticipant s = drum(minSubcycles(7));
   const std::vector<double> p(s.numInterfaceNodes(), 200.0);
-  s.setMinSubcycles(7);
   EXPECT_GE(s.subcyclesFor(1e-3), 7);
   const long before = s.structuralSteps();
   s.setPressure(p, p);
@@ -167,7 +172,7 @@ TEST(StructureParticipant, MinimumSubcyclesAreTakenAndRestartStateRoundTrips) {
   const std::string file = std::string(FSI_BINARY_DIR) + "/test-output/participant-state-" +
                            ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".h5";
   s.writeState(file, {{"extra", {1.0, 2.0}}});
-  StructureParticipant t = drum();
+  StructureParticipant t = drum(minSubcycles(7));
   const auto arrays = t.readState(file);
   EXPECT_EQ(arrays.at("extra"), (std::vector<double>{1.0, 2.0}));
   EXPECT_DOUBLE_EQ(t.time(), s.time());
@@ -176,7 +181,6 @@ TEST(StructureParticipant, MinimumSubcyclesAreTakenAndRestartStateRoundTrips) {
   // round-off) and the instability measures go on as in the run that was not stopped.
   EXPECT_EQ(t.integrator().energy().values(), s.integrator().energy().values());
   EXPECT_GT(s.integrator().energy().externalWork, 0.0);
-  t.setMinSubcycles(7);
   t.setPressure(p, p);
   s.advance(1e-3);
   t.advance(1e-3);
@@ -197,10 +201,12 @@ TEST(StructureParticipant, ThreeValuesPerNodeAreRefusedAsPressureNotReadAsForces
 }
 
 TEST(StructureParticipant, LoadKindIsExplicitAndEachKindChecksItsLength) {
-  StructureParticipant s = drum();
+  EXPECT_EQ(drum().loadKind(), structure::InterfaceLoadKind::Pressure);
+  ParticipantOptions forces;
+  forces.loadKind = structure::InterfaceLoadKind::NodalForces;
+  StructureParticipant s = drum(forces);
   const int n = s.numInterfaceNodes();
-  EXPECT_EQ(s.loadKind(), structure::InterfaceLoadKind::Pressure);
-  s.setLoadKind(structure::InterfaceLoadKind::NodalForces);
+  EXPECT_EQ(s.loadKind(), structure::InterfaceLoadKind::NodalForces);
   // One value per node is no force vector: refused, naming the kind and both counts.
   const Eigen::VectorXd perNode = Eigen::VectorXd::Constant(n, 1.0);
   try {
@@ -216,11 +222,13 @@ TEST(StructureParticipant, LoadKindIsExplicitAndEachKindChecksItsLength) {
   for (int i = 0; i < n; ++i) f[3 * i + 2] = 0.5;
   s.solve(0.0, 1e-3, f, f);
   EXPECT_NEAR(s.interfaceForce()[2], 0.5 * n, 1e-12 * n);
-  // Back to pressure: the window's forces are dropped, and a pressure vector reads as one.
-  s.setLoadKind(structure::InterfaceLoadKind::Pressure);
-  EXPECT_EQ(s.interfaceForce()[2], 0.0);
-  s.solve(s.time(), 1e-3, 300.0 * perNode, 300.0 * perNode);
-  EXPECT_NEAR(s.interfaceForce()[2], 300.0, 1e-9 * 300.0);  // over the unit square's projected area
+  // Made for pressure: a pressure vector reads as one.
+  StructureParticipant q = drum();
+  EXPECT_EQ(q.interfaceForce()[2], 0.0);
+  q.solve(q.time(), 1e-3, 300.0 * perNode, 300.0 * perNode);
+  EXPECT_NEAR(q.interfaceForce()[2], 300.0, 1e-9 * 300.0);  // over the unit square's projected area
+  // Subcycles below one are refused when the participant is made.
+  EXPECT_THROW(drum(minSubcycles(0)), std::invalid_argument);
 }
 
 TEST(StructureParticipant, LinearWindowLoadIsTheCouplingLibrarysInterpolationPerSubstep) {

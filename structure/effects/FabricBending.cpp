@@ -264,7 +264,7 @@ Connectivity FabricBending::connectivity() const {
 }
 
 FabricBending::Scratch FabricBending::scratchIn(double* memory) const {
-  if (memory == nullptr && hinges() > 0)
+  if (memory == nullptr)
     throw std::logic_error(name() + ": no working memory (ForceContext::scratch of " +
                            std::to_string(kScratchPerHinge * std::size_t(hinges())) + " doubles)");
   const std::size_t h = std::size_t(hinges());
@@ -315,6 +315,7 @@ void FabricBending::addForces(ForceContext& ctx) const {
   // Serially each triangle's curvature once, its moments scattered to its hinges. addRange (threads)
   // gathers them per hinge instead, so that a hinge range writes only its own moments, at the price of
   // each curvature three times (10–15 % more work, docs/PERFORMANCE.md).
+  if (hinges() == 0) return;
   const Scratch w = scratchIn(ctx.scratch);
   hingeAngles(ctx.x, true, 0, hinges(), w);
   std::fill(w.moment, w.moment + hinges(), 0.0);
@@ -331,10 +332,12 @@ void FabricBending::addForces(ForceContext& ctx) const {
 }
 
 void FabricBending::prepareRange(const ForceContext& ctx, int begin, int end) const {
+  if (begin >= end) return;
   hingeAngles(ctx.x, true, begin, end, scratchIn(ctx.scratch));
 }
 
 void FabricBending::addRange(ForceContext& ctx, int begin, int end) const {
+  if (begin >= end) return;
   const Scratch w = scratchIn(ctx.scratch);
   double energy = 0;
   for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {

@@ -138,7 +138,7 @@ void bendingThreads(benchmark::State& state, int threads) {
   for (const Effect* e : s.effectList())
     if (e->name().rfind("bending", 0) == 0) bending = e;
   timeThreadedEffect(state, m, *bending, threads, m.membranes.count, "triangles");
-  state.counters["hinges"] = bending->splitItems();
+  state.counters["hinges"] = bending->connectivity().items;
 }
 void BM_BendingThreads1(benchmark::State& state) {
   bendingThreads(state, 1);

@@ -25,6 +25,13 @@ Gravity::Gravity(const std::vector<double>& physicalMass, std::array<double, 3> 
     for (int k = 0; k < 3; ++k) weight_[3 * i + k] = physicalMass[i] * g[k];
 }
 
+Connectivity Gravity::connectivity() const {
+  Connectivity c;
+  c.items = int(weight_.size() / 3);
+  c.light = true;
+  return c;
+}
+
 void Gravity::addRange(ForceContext& ctx, int begin, int end) const {
   const double s = ctx.loadFactor * fn_(ctx.time);
   double* __restrict f = ctx.fext;

@@ -18,11 +18,9 @@ class FollowerPressure final : public Effect {
  public:
   FollowerPressure(std::string label, std::vector<int> triangleConn, double value, TimeFunction f);
   std::string name() const override { return "pressure:" + label_; }
-  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
-  int splitItems() const override { return int(conn_.size() / 3); }
-  void splitElementNodes(int element, std::vector<int>& nodes) const override {
-    appendElementNodes(conn_, 3, element, nodes);
-  }
+  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, int(conn_.size() / 3)); }
+  /// The triangles, 3 nodes each.
+  Connectivity connectivity() const override { return {int(conn_.size() / 3), 3, conn_.data()}; }
   void addRange(ForceContext& ctx, int begin, int end) const override;
   double valueAt(double t) const { return value_ * fn_(t); }
 
@@ -38,11 +36,9 @@ class Gravity final : public Effect {
  public:
   Gravity(const std::vector<double>& physicalMass, std::array<double, 3> g, TimeFunction f);
   std::string name() const override { return "gravity"; }
-  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
-  // Splits over the nodes for threads (ThreadedForces.hpp): each writes only to itself.
-  int splitItems() const override { return int(weight_.size() / 3); }
-  bool splitDecides() const override { return false; }
-  void splitElementNodes(int node, std::vector<int>& nodes) const override { nodes.push_back(node); }
+  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, int(weight_.size() / 3)); }
+  /// The nodes, each writing only to itself; light (m g per node).
+  Connectivity connectivity() const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
 
  private:

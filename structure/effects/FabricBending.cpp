@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 namespace fsi::structure {
@@ -246,38 +247,58 @@ FabricBending::FabricBending(std::string label, const std::vector<int>& conn, co
       energyAt_[side] = h == lowest ? 1 : 0;
     }
   }
-  dtheta_.assign(theta0_.size(), 0.0);
-  moment_.assign(theta0_.size(), 0.0);
-  g_.assign(12 * theta0_.size(), 0.0);
 }
 
-void FabricBending::hingeAngles(const double* x, bool gradients, int begin, int end) const {
+namespace {
+constexpr std::size_t kScratchPerHinge = 14;  // Δθ, moment, 12 gradient components
+}  // namespace
+
+Connectivity FabricBending::connectivity() const {
+  Connectivity c;
+  c.items = hinges();
+  c.nodesPerItem = 4;
+  c.nodes = hingeNodes_.data();
+  c.prepass = true;
+  c.scratch = kScratchPerHinge * std::size_t(hinges());
+  return c;
+}
+
+FabricBending::Scratch FabricBending::scratchIn(double* memory) const {
+  if (memory == nullptr)
+    throw std::logic_error(name() + ": no working memory (ForceContext::scratch of " +
+                           std::to_string(kScratchPerHinge * std::size_t(hinges())) + " doubles)");
+  const std::size_t h = std::size_t(hinges());
+  return {memory, memory + h, memory + 2 * h};
+}
+
+void FabricBending::hingeAngles(const double* x, bool gradients, int begin, int end, const Scratch& w) const {
   for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
     const int* n = &hingeNodes_[4 * h];
-    const double theta =
-        hingeAngle(&x[3 * n[0]], &x[3 * n[1]], &x[3 * n[2]], &x[3 * n[3]], gradients ? &g_[12 * h] : nullptr);
-    dtheta_[h] = wrapAngle(theta - theta0_[h]);
+    const double theta = hingeAngle(&x[3 * n[0]], &x[3 * n[1]], &x[3 * n[2]], &x[3 * n[3]],
+                                    gradients ? &w.g[12 * h] : nullptr);
+    w.dtheta[h] = wrapAngle(theta - theta0_[h]);
   }
 }
 
 std::array<double, 3> FabricBending::curvature(int t, const double* x) const {
-  hingeAngles(x, false, 0, hinges());
+  std::vector<double> dtheta(static_cast<std::size_t>(hinges()));
+  hingeAngles(x, false, 0, hinges(), {dtheta.data(), nullptr, nullptr});
   const Triangle& T = tris_[std::size_t(t)];
   std::array<double, 3> S{0, 0, 0};
   for (int e = 0; e < 3; ++e) {
     if (T.hinge[std::size_t(e)] < 0) continue;
-    const double th = T.sign[std::size_t(e)] * dtheta_[std::size_t(T.hinge[std::size_t(e)])];
+    const double th = T.sign[std::size_t(e)] * dtheta[std::size_t(T.hinge[std::size_t(e)])];
     for (int r = 0; r < 3; ++r) S[std::size_t(r)] += T.B[std::size_t(3 * r + e)] * th;
   }
   return S;
 }
 
-void FabricBending::triangleMoments(int t, double* dEdTheta, double* energy) const {
+void FabricBending::triangleMoments(int t, const double* dtheta, double* dEdTheta, double* energy) const {
   const Triangle& T = tris_[std::size_t(t)];
   double th[3] = {0, 0, 0};
   for (int k = 0; k < 3; ++k)
     if (T.hinge[std::size_t(k)] >= 0)
-      th[k] = T.sign[std::size_t(k)] * dtheta_[std::size_t(T.hinge[std::size_t(k)])];
+      th[k] = T.sign[std::size_t(k)] * dtheta[std::size_t(T.hinge[std::size_t(k)])];
   double S[3];
   for (int r = 0; r < 3; ++r)
     S[r] = T.B[std::size_t(3 * r)] * th[0] + T.B[std::size_t(3 * r + 1)] * th[1] +
@@ -294,25 +315,30 @@ void FabricBending::addForces(ForceContext& ctx) const {
   // Serially each triangle's curvature once, its moments scattered to its hinges. addRange (threads)
   // gathers them per hinge instead, so that a hinge range writes only its own moments, at the price of
   // each curvature three times (10–15 % more work, docs/PERFORMANCE.md).
-  hingeAngles(ctx.x, true, 0, hinges());
-  std::fill(moment_.begin(), moment_.end(), 0.0);
+  if (hinges() == 0) return;
+  const Scratch w = scratchIn(ctx.scratch);
+  hingeAngles(ctx.x, true, 0, hinges(), w);
+  std::fill(w.moment, w.moment + hinges(), 0.0);
   double energy = 0;
   for (std::size_t t = 0; t < tris_.size(); ++t) {
     if (tris_[t].weight == 0) continue;
     double m[3];
-    triangleMoments(int(t), m, ctx.wantEnergy ? &energy : nullptr);
+    triangleMoments(int(t), w.dtheta, m, ctx.wantEnergy ? &energy : nullptr);
     for (int e = 0; e < 3; ++e)
-      if (tris_[t].hinge[std::size_t(e)] >= 0) moment_[std::size_t(tris_[t].hinge[std::size_t(e)])] += m[e];
+      if (tris_[t].hinge[std::size_t(e)] >= 0) w.moment[std::size_t(tris_[t].hinge[std::size_t(e)])] += m[e];
   }
   if (ctx.wantEnergy) ctx.strainEnergy += energy;
-  hingeForces(ctx, 0, hinges());
+  hingeForces(ctx, 0, hinges(), w);
 }
 
 void FabricBending::prepareRange(const ForceContext& ctx, int begin, int end) const {
-  hingeAngles(ctx.x, true, begin, end);
+  if (begin >= end) return;
+  hingeAngles(ctx.x, true, begin, end, scratchIn(ctx.scratch));
 }
 
 void FabricBending::addRange(ForceContext& ctx, int begin, int end) const {
+  if (begin >= end) return;
+  const Scratch w = scratchIn(ctx.scratch);
   double energy = 0;
   for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
     double moment = 0;
@@ -321,22 +347,22 @@ void FabricBending::addRange(ForceContext& ctx, int begin, int end) const {
       if (at < 0) continue;
       double m[3];
       // A triangle's energy once: at its lowest-numbered hinge (energyAt_).
-      triangleMoments(at / 3, m, ctx.wantEnergy && energyAt_[side] ? &energy : nullptr);
+      triangleMoments(at / 3, w.dtheta, m, ctx.wantEnergy && energyAt_[side] ? &energy : nullptr);
       moment += m[at % 3];
     }
-    moment_[h] = moment;
+    w.moment[h] = moment;
   }
   if (ctx.wantEnergy) ctx.strainEnergy += energy;
-  hingeForces(ctx, begin, end);
+  hingeForces(ctx, begin, end, w);
 }
 
-void FabricBending::hingeForces(ForceContext& ctx, int begin, int end) const {
+void FabricBending::hingeForces(ForceContext& ctx, int begin, int end, const Scratch& w) const {
   double* f = ctx.fint;
   double w2max = 0;
   for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
     const int* n = &hingeNodes_[4 * h];
-    const double* g = &g_[12 * h];
-    const double m = moment_[h];
+    const double* g = &w.g[12 * h];
+    const double m = w.moment[h];
     for (int v = 0; v < 4; ++v)
       for (int c = 0; c < 3; ++c) f[3 * n[v] + c] += m * g[3 * v + c];
     if (mass_ != nullptr) {
@@ -352,14 +378,15 @@ void FabricBending::hingeForces(ForceContext& ctx, int begin, int end) const {
 }
 
 double FabricBending::energy(const double* x) const {
-  hingeAngles(x, false, 0, hinges());
+  std::vector<double> dtheta(static_cast<std::size_t>(hinges()));
+  hingeAngles(x, false, 0, hinges(), {dtheta.data(), nullptr, nullptr});
   double E = 0;
   for (const Triangle& T : tris_) {
     if (T.weight == 0) continue;
     double S[3] = {0, 0, 0};
     for (int e = 0; e < 3; ++e) {
       if (T.hinge[std::size_t(e)] < 0) continue;
-      const double th = T.sign[std::size_t(e)] * dtheta_[std::size_t(T.hinge[std::size_t(e)])];
+      const double th = T.sign[std::size_t(e)] * dtheta[std::size_t(T.hinge[std::size_t(e)])];
       for (int r = 0; r < 3; ++r) S[r] += T.B[std::size_t(3 * r + e)] * th;
     }
     E += 0.5 * T.weight * (S[0] * S[0] + 2 * S[1] * S[1] + S[2] * S[2]);

@@ -53,16 +53,13 @@ class FabricBending final : public Effect {
                 const std::vector<double>* mass, double rigidity);
   std::string name() const override { return "bending:" + label_; }
   void addForces(ForceContext& ctx) const override;
-  // Splits over the hinges for threads (ThreadedForces.hpp): first every hinge's angle and its gradient
-  // (prepareRange), then each hinge's moment from the curvatures of its two triangles and its forces on
-  // its four nodes (addRange). A triangle's curvature is so computed once for each of its hinges (three
-  // times, where addForces computes it once), and its energy counted at its lowest-numbered hinge.
-  int splitItems() const override { return hinges(); }
-  void splitElementNodes(int hinge, std::vector<int>& nodes) const override {
-    appendElementNodes(hingeNodes_, 4, hinge, nodes);
-  }
+  /// The hinges, 4 nodes each, with a first pass (every hinge's angle and its gradient, prepareRange)
+  /// before each hinge's moment from the curvatures of its two triangles and its forces on its four nodes
+  /// (addRange). A triangle's curvature is so computed once for each of its hinges (three times, where
+  /// addForces computes it once), and its energy counted at its lowest-numbered hinge. Working memory
+  /// (ForceContext::scratch): 14 doubles per hinge, its Δθ, moment and gradient.
+  Connectivity connectivity() const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
-  int prepareItems() const override { return hinges(); }
   void prepareRange(const ForceContext& ctx, int begin, int end) const override;
 
   /// Hinges found (interior edges shared by exactly two triangles) and edges left out because three or more
@@ -81,12 +78,19 @@ class FabricBending final : public Effect {
     std::array<double, 9> B{};             ///< S = B Δθ, row-major (s11, s12, s22) × edges
     double weight = 0;                     ///< D·A_T
   };
-  /// Δθ of hinges [begin, end) at x (and their gradients into g_, if asked).
-  void hingeAngles(const double* x, bool gradients, int begin, int end) const;
+  /// One evaluation's working memory, per hinge, laid out in ForceContext::scratch (or a local buffer).
+  struct Scratch {
+    double* dtheta;  ///< Δθ
+    double* moment;  ///< ∂E/∂θ
+    double* g;       ///< ∂θ/∂x, 12 per hinge
+  };
+  Scratch scratchIn(double* memory) const;
+  /// Δθ of hinges [begin, end) at x into w.dtheta (and their gradients into w.g, if asked).
+  void hingeAngles(const double* x, bool gradients, int begin, int end, const Scratch& w) const;
   /// ∂E/∂θ of triangle t's three edges' hinges from its curvature (and E_t added to *energy if given).
-  void triangleMoments(int t, double* dEdTheta, double* energy) const;
-  /// The forces of hinges [begin, end) from their moments (moment_) and gradients, and their step bound.
-  void hingeForces(ForceContext& ctx, int begin, int end) const;
+  void triangleMoments(int t, const double* dtheta, double* dEdTheta, double* energy) const;
+  /// The forces of hinges [begin, end) from their moments and gradients, and their step bound.
+  void hingeForces(ForceContext& ctx, int begin, int end, const Scratch& w) const;
   std::string label_;
   std::vector<int> hingeNodes_;  ///< 4 per hinge: the two opposite vertices, then the edge's two
   std::vector<double> theta0_;
@@ -96,8 +100,6 @@ class FabricBending final : public Effect {
   std::vector<unsigned char> energyAt_;  ///< 2 per hinge: the triangle's energy is counted at this hinge
   const std::vector<double>* mass_ = nullptr;
   int seams_ = 0;
-  // Scratch of one evaluation, per hinge (sized at construction: threads write disjoint parts).
-  mutable std::vector<double> dtheta_, moment_, g_;
 };
 
 /// The signed dihedral angle of the hinge (x1, x2 opposite vertices; x3, x4 the edge) and, if g is given,

@@ -10,20 +10,6 @@ const char* toString(InterfaceLoadKind kind) {
                                              : "nodal forces (three values per interface node)";
 }
 
-InterfacePressure::InterfacePressure(std::vector<int> triangleConn, std::vector<int> nodes,
-                                     const InterfaceLoad& load)
-    : nodes_(std::move(nodes)), load_(load) {
-  std::unordered_map<int, int> local;
-  for (std::size_t i = 0; i < nodes_.size(); ++i) local[nodes_[i]] = int(i);
-  conn_.reserve(triangleConn.size());
-  for (int n : triangleConn) {
-    const auto it = local.find(n);
-    if (it == local.end())
-      throw std::invalid_argument("interface triangle uses a node outside the interface");
-    conn_.push_back(it->second);
-  }
-}
-
 namespace {
 // The interface nodes [first, last) whose nodal forces triangles [begin, end) of `triangles` add; all of
 // them for the whole range (also without triangles).
@@ -37,11 +23,36 @@ void nodeSlice(std::size_t nodes, int triangles, int begin, int end, std::size_t
 }
 }  // namespace
 
-void InterfacePressure::splitElementNodes(int element, std::vector<int>& nodes) const {
-  for (int k = 0; k < 3; ++k) nodes.push_back(nodes_[std::size_t(conn_[3 * std::size_t(element) + k])]);
-  std::size_t first = 0, last = 0;
-  nodeSlice(nodes_.size(), splitItems(), element, element + 1, first, last);
-  for (std::size_t i = first; i < last; ++i) nodes.push_back(nodes_[i]);
+InterfacePressure::InterfacePressure(std::vector<int> triangleConn, std::vector<int> nodes,
+                                     const InterfaceLoad& load)
+    : nodes_(std::move(nodes)), load_(load) {
+  std::unordered_map<int, int> local;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) local[nodes_[i]] = int(i);
+  conn_.reserve(triangleConn.size());
+  for (int n : triangleConn) {
+    const auto it = local.find(n);
+    if (it == local.end())
+      throw std::invalid_argument("interface triangle uses a node outside the interface");
+    conn_.push_back(it->second);
+  }
+  const int nt = triangles();
+  itemOffsets_.reserve(std::size_t(nt) + 1);
+  itemOffsets_.push_back(0);
+  for (int e = 0; e < nt; ++e) {
+    for (int k = 0; k < 3; ++k) itemNodes_.push_back(nodes_[std::size_t(conn_[3 * std::size_t(e) + k])]);
+    std::size_t first = 0, last = 0;
+    nodeSlice(nodes_.size(), nt, e, e + 1, first, last);
+    for (std::size_t i = first; i < last; ++i) itemNodes_.push_back(nodes_[i]);
+    itemOffsets_.push_back(int(itemNodes_.size()));
+  }
+}
+
+Connectivity InterfacePressure::connectivity() const {
+  Connectivity c;
+  c.items = triangles();
+  c.nodes = itemNodes_.data();
+  c.offsets = itemOffsets_.data();
+  return c;
 }
 
 void InterfacePressure::addRange(ForceContext& ctx, const InterfaceLoad& load, int begin, int end) const {
@@ -55,7 +66,7 @@ void InterfacePressure::addRange(ForceContext& ctx, const InterfaceLoad& load, i
   double* __restrict f = ctx.fext;
   if (load.kind == InterfaceLoadKind::NodalForces) {
     std::size_t first = 0, last = 0;
-    nodeSlice(n, splitItems(), begin, end, first, last);
+    nodeSlice(n, triangles(), begin, end, first, last);
     for (std::size_t i = first; i < last; ++i)
       for (int k = 0; k < 3; ++k) f[3 * nodes_[i] + k] += lf * q[3 * i + std::size_t(k)];
     return;

@@ -49,20 +49,22 @@ class InterfacePressure final : public Effect {
   std::string name() const override { return "interface_pressure"; }
   void addForces(ForceContext& ctx) const override { addForces(ctx, load_); }
   /// The forces of any load on this interface (e.g. to sum a load that is not the current one).
-  void addForces(ForceContext& ctx, const InterfaceLoad& load) const { addRange(ctx, load, 0, splitItems()); }
-  // Splits over the triangles for threads (ThreadedForces.hpp). Nodal forces are a cheap pass over the
-  // interface nodes, cut in proportion: triangles [b, e) of T add the interface nodes [n b / T, n e / T)
-  // (nodeSlice), so the ranges of one evaluation add each node once, and each triangle names its slice's
-  // nodes among those it writes to.
-  int splitItems() const override { return int(conn_.size() / 3); }
-  void splitElementNodes(int element, std::vector<int>& nodes) const override;
+  void addForces(ForceContext& ctx, const InterfaceLoad& load) const { addRange(ctx, load, 0, triangles()); }
+  /// The triangles. Nodal forces are a cheap pass over the interface nodes, cut in proportion: triangles
+  /// [b, e) of T add the interface nodes [n b / T, n e / T) (nodeSlice), so the ranges of one evaluation add
+  /// each node once, and each triangle's nodes are its 3 and its slice's.
+  Connectivity connectivity() const override;
   void addRange(ForceContext& ctx, int begin, int end) const override { addRange(ctx, load_, begin, end); }
   const std::vector<int>& nodes() const { return nodes_; }
 
  private:
+  int triangles() const { return int(conn_.size() / 3); }
   void addRange(ForceContext& ctx, const InterfaceLoad& load, int begin, int end) const;
   std::vector<int> conn_;   ///< triangles as local interface node indices
   std::vector<int> nodes_;  ///< interface node -> model node
+  /// The model nodes each triangle writes to (connectivity): triangle e's are itemNodes_[itemOffsets_[e],
+  /// itemOffsets_[e + 1]).
+  std::vector<int> itemNodes_, itemOffsets_;
   const InterfaceLoad& load_;
 };
 

@@ -33,11 +33,9 @@ class PressureDistribution final : public Effect {
                                    std::vector<double> values, TimeFunction f, const std::vector<double>& X);
   bool follower() const { return dead_.empty(); }
   std::string name() const override { return "pressure_distribution:" + label_; }
-  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, splitItems()); }
-  int splitItems() const override { return int(sixth_.size()); }
-  void splitElementNodes(int element, std::vector<int>& nodes) const override {
-    appendElementNodes(conn_, 3, element, nodes);
-  }
+  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, int(sixth_.size())); }
+  /// The triangles, 3 nodes each.
+  Connectivity connectivity() const override { return {int(sixth_.size()), 3, conn_.data()}; }
   void addRange(ForceContext& ctx, int begin, int end) const override;
 
  private:

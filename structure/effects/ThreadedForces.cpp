@@ -13,23 +13,26 @@
 namespace fsi::structure {
 
 ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, int nodes)
-    : effects_(std::move(effects)) {
+    : effects_(std::move(effects)), scratch_(effects_) {
+  // From each effect's connectivity alone: which split (a light one never decides the threading; a
+  // scattered one splits only with enough items to decide it), which have a first pass, which run whole.
   int largest = -1, most = 0;
-  for (const Effect* e : effects_) {
-    if (e->splitItems() > 0) {
-      if (e->splitDecides() && e->splitItems() > most) most = e->splitItems(), largest = int(split_.size());
-      split_.push_back(e);
-      if (e->prepareItems() > 0) prepare_.push_back(e);
+  for (std::size_t i = 0; i < effects_.size(); ++i) {
+    const Connectivity c = effects_[i]->connectivity();
+    if (c.items > 0 && !(c.scattered && c.items < kMinParallelItems)) {
+      if (!c.light && c.items > most) most = c.items, largest = int(split_.size());
+      split_.push_back({effects_[i], c, scratch_.of(i)});
+      prepass_ = prepass_ || c.prepass;
     } else {
-      whole_.push_back(e);
+      whole_.push_back({effects_[i], c, scratch_.of(i)});
     }
   }
   if (threads <= 1 || !threadsAvailable() || most < kMinParallelItems) return;
   shares_.resize(std::size_t(threads));
 
   // Equal element counts, boundaries on whole batches; the last share takes the remainder.
-  auto range = [&](const Effect* e, int s, int& begin, int& end) {
-    const int n = e->splitItems(), a = e->splitAlignment();
+  auto range = [&](const Connectivity& c, int s, int& begin, int& end) {
+    const int n = c.items, a = c.batch;
     auto boundary = [&](int b) {
       if (b == 0 || b == threads) return b == 0 ? 0 : n;
       return std::max(std::min(n, 1), int(long(n) * b / threads / a * a));
@@ -43,11 +46,12 @@ ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, 
   std::vector<int> en;
   for (int s = 1; s < threads; ++s) {
     int b = 0, e = 0;
-    range(split_[std::size_t(largest)], s, b, e);
+    const Connectivity& c = split_[std::size_t(largest)].items;
+    range(c, s, b, e);
     int lo = cut[std::size_t(s) - 1];
     if (b < e) {
       en.clear();
-      split_[std::size_t(largest)]->splitElementNodes(b, en);
+      c.appendNodes(b, en);
       if (!en.empty()) lo = std::max(lo, *std::min_element(en.begin(), en.end()));
     }
     cut[std::size_t(s)] = std::min(lo, nodes);
@@ -59,15 +63,15 @@ ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, 
     sh.nodeEnd = cut[std::size_t(s) + 1];
     std::vector<int> seamNodes;
     for (std::size_t i = 0; i < split_.size(); ++i) {
-      const Effect* eff = split_[i];
+      const Connectivity& c = split_[i].items;
       int b = 0, end = 0;
-      range(eff, s, b, end);
+      range(c, s, b, end);
       // Blocks of whole batches: a block writes directly when all its elements stay in the band.
-      const int a = std::max(1, eff->splitAlignment());
+      const int a = std::max(1, c.batch);
       for (int j = b; j < end;) {
         const int blockEnd = std::min(end, (j / a + 1) * a);
         en.clear();
-        for (int k = j; k < blockEnd; ++k) eff->splitElementNodes(k, en);
+        for (int k = j; k < blockEnd; ++k) c.appendNodes(k, en);
         const bool direct = std::all_of(en.begin(), en.end(),
                                         [&](int node) { return node >= sh.nodeBegin && node < sh.nodeEnd; });
         if (!direct) seamNodes.insert(seamNodes.end(), en.begin(), en.end());
@@ -104,7 +108,9 @@ void ThreadedForces::evaluateShare(int s, const ForceContext& base) {
   for (const Run& r : sh.runs) {
     ctx.fint = r.direct ? base.fint : sh.fint.get();
     ctx.fext = r.direct ? base.fext : sh.fext.get();
-    split_[std::size_t(r.effect)]->addRange(ctx, r.begin, r.end);
+    const Part& p = split_[std::size_t(r.effect)];
+    ctx.scratch = p.scratch;
+    p.effect->addRange(ctx, r.begin, r.end);
   }
   sh.dt = ctx.minStableDt;
   sh.energy = ctx.strainEnergy;
@@ -114,18 +120,24 @@ void ThreadedForces::evaluateWhole(const ForceContext& base) {
   ForceContext ctx = base;
   ctx.minStableDt = std::numeric_limits<double>::infinity();
   ctx.strainEnergy = 0.0;
-  for (const Effect* e : whole_) e->addForces(ctx);
+  for (const Part& p : whole_) {
+    ctx.scratch = p.scratch;
+    p.effect->addForces(ctx);
+  }
   wholeDt_ = ctx.minStableDt;
   wholeEnergy_ = ctx.strainEnergy;
 }
 
 void ThreadedForces::evaluateShares(int t, int nt, const ForceContext& base) {
   const int shares = this->shares();
-  if (!prepare_.empty()) {
+  if (prepass_) {
+    ForceContext ctx = base;
     for (int s = t; s < shares; s += nt)
-      for (const Effect* e : prepare_) {
-        const long n = e->prepareItems();
-        e->prepareRange(base, int(n * s / shares), int(n * (s + 1) / shares));
+      for (const Part& p : split_) {
+        if (!p.items.prepass) continue;
+        const long n = p.items.items;
+        ctx.scratch = p.scratch;
+        p.effect->prepareRange(ctx, int(n * s / shares), int(n * (s + 1) / shares));
       }
 #ifdef FSI_HAVE_OPENMP
 #pragma omp barrier
@@ -175,12 +187,12 @@ long ThreadedForces::seamElements() const {
 
 long ThreadedForces::splitElements() const {
   long n = 0;
-  for (const Effect* e : split_) n += e->splitItems();
+  for (const Part& p : split_) n += p.items.items;
   return n;
 }
 
 ForceContext ThreadedForces::evaluate(Nodes& nodes, double time, double loadFactor, bool wantEnergy) {
-  if (serial()) return evaluateEffects(nodes, effects_, time, loadFactor, wantEnergy);
+  if (serial()) return evaluateEffects(nodes, effects_, scratch_, time, loadFactor, wantEnergy);
   ForceContext ctx = forceContextFor(nodes, time, loadFactor, wantEnergy);
 #ifdef FSI_HAVE_OPENMP
   const int shares = this->shares();

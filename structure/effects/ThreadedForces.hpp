@@ -1,11 +1,16 @@
 #pragma once
-// ThreadedForces: one force evaluation on several threads (scene key solver.threads; docs/PERFORMANCE.md
-// "Threads").
+// ThreadedForces: the force assembler. It evaluates a list of effects, serially or on several threads
+// (scene key solver.threads; docs/PERFORMANCE.md "Threads"), and owns everything about the parallelism:
+// which effects split, the shares and node bands, the seam buffers, the barriers, and every effect's
+// working memory (ForceContext::scratch). The effects only describe their items and the nodes each writes
+// to (Effect::connectivity) and evaluate ranges of them (Effect::addRange, Effect::prepareRange).
 //
-// Every effect that splits (Effect::splitItems: the membrane kernel, the pressure loads, gravity, the
-// fabric's bending, the cable kernel from kMinParallelItems cables on) is cut into as many contiguous element
-// ranges as there are shares, one share per thread. An effect with a per-item pass that all its elements
-// read (Effect::prepareRange: the bending's hinge angles) has that pass split first, then a barrier. The
+// Every effect with items splits (the membrane and cable kernels, the pressure loads, gravity, the fabric's
+// bending), except a scattered one (Connectivity::scattered: the cables) with fewer than kMinParallelItems
+// items; a light one (Connectivity::light: gravity) splits but never decides the threading. Each is cut into
+// as many contiguous item ranges as there are shares (on multiples of Connectivity::batch), one share per
+// thread. An effect with a first pass over all its items (Connectivity::prepass: the bending's hinge angles)
+// has that pass split first, then a barrier. The
 // nodes are cut into as many bands, at the lowest node of each share's first element of the largest split
 // effect: the elements are sorted by their lowest node and the nodes follow a Morton curve, so nearly all of
 // a share's elements have every node in its own band. Those elements write straight into the node arrays,
@@ -40,15 +45,16 @@ struct Nodes;
 
 class ThreadedForces {
  public:
-  /// One share (serial: evaluateEffects) if threads ≤ 1, without OpenMP, or when no split effect that
-  /// decides (Effect::splitDecides) has kMinParallelItems elements (effects/Threads.hpp).
+  /// One share (serial: evaluateEffects with this object's scratch) if threads ≤ 1, without OpenMP, or when
+  /// no split effect that is not light has kMinParallelItems items (effects/Threads.hpp). Reads every
+  /// effect's connectivity once, here; allocates the effects' working memory.
   ThreadedForces(std::vector<const Effect*> effects, int threads, int nodes);
 
   int shares() const { return int(shares_.size()); }
   bool serial() const { return shares_.size() <= 1; }
 
   /// Phase 1, called by EVERY thread t of nt of a parallel region (it has barriers): thread t evaluates
-  /// shares t, t + nt, ...: its part of the split effects' per-item passes (Effect::prepareRange; then a
+  /// shares t, t + nt, ...: its part of the split effects' first passes (Effect::prepareRange; then a
   /// barrier), clears the share's band of base.fint and base.fext and its seam buffer, adds the forces of its
   /// elements of every split effect; then (after a barrier) thread 0 adds the effects that do not split.
   /// `base` gives x, v, the node arrays, time, load factor and wantEnergy. The caller puts a barrier after.
@@ -83,9 +89,16 @@ class ThreadedForces {
   };
   void evaluateShare(int s, const ForceContext& base);
   void evaluateWhole(const ForceContext& base);
+  /// An effect with its connectivity (read once, at construction) and its working memory.
+  struct Part {
+    const Effect* effect = nullptr;
+    Connectivity items;
+    double* scratch = nullptr;  ///< in scratch_
+  };
   std::vector<const Effect*> effects_;
-  std::vector<const Effect*> split_, whole_;
-  std::vector<const Effect*> prepare_;  ///< split effects with a per-item pass before their elements
+  EffectScratch scratch_;  ///< every effect's working memory (ForceContext::scratch), in effects_ order
+  std::vector<Part> split_, whole_;
+  bool prepass_ = false;  ///< a split effect has a first pass over all its items (Connectivity::prepass)
   std::vector<Share> shares_;
   double wholeDt_ = 0, wholeEnergy_ = 0;
 };

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "structure/effects/Threads.hpp"
 #include "structure/elements/CableBatch.hpp"
 
 namespace fsi::structure {
@@ -111,16 +110,14 @@ void CableForces::addRange(ForceContext& ctx, int begin, int end) const {
   ctx.minStableDt = std::min(ctx.minStableDt, minDt_);
 }
 
-int CableForces::splitItems() const {
-  return el_.count >= kMinParallelItems ? el_.count : 0;
-}
-
-int CableForces::splitAlignment() const {
-  return kernel_ == CableKernel::Batched ? cable::kWidth : 1;
-}
-
-void CableForces::splitElementNodes(int element, std::vector<int>& nodes) const {
-  appendElementNodes(el_.conn, 2, element, nodes);
+Connectivity CableForces::connectivity() const {
+  Connectivity c;
+  c.items = el_.count;
+  c.nodesPerItem = 2;
+  c.nodes = el_.conn.data();
+  c.batch = kernel_ == CableKernel::Batched ? cable::kWidth : 1;
+  c.scattered = true;
+  return c;
 }
 
 void CableForces::evaluate(const double* x, std::vector<double>& tension) const {

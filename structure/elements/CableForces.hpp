@@ -4,9 +4,9 @@
 // Stable step: L0/c with c = sqrt(E/ρ) (the axial stiffness EA/L0 does not soften when the cable stretches).
 // Evaluation: batches of lanes::kWidth cables in vector lanes (CableBatch.hpp) on structure-of-arrays data
 // laid out at construction (the two end nodes' offsets in separate arrays, the viscous coefficient per
-// cable), the per-cable loop for each block's remainder and as the reference. The effect splits into
-// contiguous cable ranges (whole batches) for threads (effects/ThreadedForces.hpp) when it has
-// kMinParallelItems cables or more; fewer run whole on the first thread. Mass scaling must precede
+// cable), the per-cable loop for each block's remainder and as the reference. Threads evaluate it in
+// contiguous cable ranges (whole batches; effects/ThreadedForces.hpp) when it has kMinParallelItems cables
+// or more; fewer run whole on the first thread. Mass scaling must precede
 // construction (wave speeds are cached).
 
 #include <vector>
@@ -37,12 +37,10 @@ class CableForces final : public Effect {
   CableForces(const Cables& cables, CableViscosity viscosity, CableKernel kernel = CableKernel::Batched);
   std::string name() const override { return "cable"; }
   void addForces(ForceContext& ctx) const override;
-  /// The cable count if it reaches kMinParallelItems, else 0 (too few to share: they run whole on the first
-  /// thread, and their node span, e.g. lines from a canopy to a confluence point, stays out of the shares'
-  /// buffers).
-  int splitItems() const override;
-  int splitAlignment() const override;
-  void splitElementNodes(int element, std::vector<int>& nodes) const override;
+  /// The cables, 2 nodes each, in batches of the kernel's width; scattered (a small set, e.g. lines from a
+  /// canopy to a confluence point, spans the node numbering: it runs whole rather than through the
+  /// threads' seam buffers).
+  Connectivity connectivity() const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
   /// Elastic tension [N] of every cable at configuration x.
   void evaluate(const double* x, std::vector<double>& tension) const;

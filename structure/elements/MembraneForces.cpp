@@ -178,12 +178,13 @@ void MembraneForces::addRange(ForceContext& ctx, int begin, int end) const {
   evaluateRange(el_, visc_, kernel_, begin, end, ctx);
 }
 
-void MembraneForces::splitElementNodes(int element, std::vector<int>& nodes) const {
-  appendElementNodes(el_.conn, 3, element, nodes);
-}
-
-int MembraneForces::splitAlignment() const {
-  return kernel_ == MembraneKernel::Batched ? membrane::kWidth : 1;
+Connectivity MembraneForces::connectivity() const {
+  Connectivity c;
+  c.items = el_.count;
+  c.nodesPerItem = 3;
+  c.nodes = el_.conn.data();
+  c.batch = kernel_ == MembraneKernel::Batched ? membrane::kWidth : 1;
+  return c;
 }
 
 void MembraneForces::evaluate(const double* x, MembraneStressField& out) const {

@@ -14,7 +14,7 @@
 // bounds); the rest of the element kind (mass, scaling, fields, diagnosis) in MembraneElement.
 // Evaluation: batches of lanes::kWidth triangles in vector lanes (MembraneBatch.hpp), the per-element loop
 // for each block's remainder and as the reference. Splits into contiguous element ranges (whole batches) for
-// threads (effects/ThreadedForces.hpp).
+// threads (by effects/ThreadedForces.hpp, from the triangles' connectivity).
 
 #include <cstdint>
 #include <vector>
@@ -47,9 +47,8 @@ class MembraneForces final : public Effect {
                  MembraneKernel kernel = MembraneKernel::Batched);
   std::string name() const override { return "membrane"; }
   void addForces(ForceContext& ctx) const override;
-  int splitItems() const override { return el_.count; }
-  int splitAlignment() const override;
-  void splitElementNodes(int element, std::vector<int>& nodes) const override;
+  /// The triangles, 3 nodes each, in batches of the kernel's width.
+  Connectivity connectivity() const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
   /// Stresses, states and strains at configuration x (no forces); used at output times.
   void evaluate(const double* x, MembraneStressField& out) const;

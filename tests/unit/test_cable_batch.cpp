@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "ForceDifference.hpp"
+#include "structure/effects/ThreadedForces.hpp"
 #include "structure/elements/BuildModel.hpp"
 #include "structure/elements/CableForces.hpp"
 #include "structure/model/Model.hpp"
@@ -352,11 +353,18 @@ TEST(CableBatch, ComparisonDetectsOneMishandledLane) {
   }
 }
 
-// Below kMinParallelItems cables the effect does not split for threads (it runs whole on the first one);
-// the batched kernel's shares start on whole batches (tests/unit/test_threads.cpp: a net above it).
+// The cables' connectivity: 2 nodes each, scattered, so that below kMinParallelItems cables the assembler
+// does not split them for threads (they run whole on the first one); the batched kernel's ranges start on
+// whole batches (tests/unit/test_threads.cpp: a net above it).
 TEST(CableBatch, SmallNetDoesNotSplit) {
   const Model small = randomNet({40}, 3u);
-  EXPECT_EQ(CableForces(small.cables, kNone).splitItems(), 0);
-  EXPECT_EQ(CableForces(small.cables, kNone).splitAlignment() % 2, 0);
-  EXPECT_EQ(CableForces(small.cables, kNone, CableKernel::PerElement).splitAlignment(), 1);
+  const CableForces batched(small.cables, kNone);
+  const Connectivity c = batched.connectivity();
+  EXPECT_EQ(c.items, small.cables.count);
+  EXPECT_EQ(c.nodesPerItem, 2);
+  EXPECT_EQ(c.nodes, small.cables.conn.data());
+  EXPECT_TRUE(c.scattered);
+  EXPECT_EQ(c.batch % 2, 0);
+  EXPECT_EQ(CableForces(small.cables, kNone, CableKernel::PerElement).connectivity().batch, 1);
+  EXPECT_EQ(ThreadedForces({&batched}, 2, small.nodes.count).splitElements(), 0);
 }

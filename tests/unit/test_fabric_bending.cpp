@@ -48,6 +48,8 @@ std::vector<double> internalForces(const FabricBending& fb, const std::vector<do
   ctx.x = x.data();
   ctx.fint = fint.data();
   ctx.fext = fext.data();
+  std::vector<double> scratch(fb.connectivity().scratch);  // its working memory: the caller's
+  ctx.scratch = scratch.data();
   fb.addForces(ctx);
   return fint;
 }

@@ -48,17 +48,30 @@ bool positiveLower(const SceneKey& k) {
 
 }  // namespace
 
+namespace {
+
+bool noUpper(const SceneKey& k) {
+  return !k.upper || k.upper->value >= kAnyLong.value;
+}
+
+}  // namespace
+
 std::string SceneKey::rangeText() const {
+  if (type == KeyType::Integer && !upper) {  // read into an int (SchemaMap::integer)
+    SceneKey bounded = *this;
+    bounded.upper = KeyBound{2147483647.0, true};
+    return bounded.rangeText();
+  }
   if (type == KeyType::Choice) {
     std::string s = "one of: ";
     for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : "") + choices[i];
     return s;
   }
-  if (lower && upper)
+  if (lower && !noUpper(*this))
     return fmt::format("{}{}, {}{}", lower->inclusive ? "[" : "(", lower->value, upper->value,
                        upper->inclusive ? "]" : ")");
   if (lower) return fmt::format("{} {}", lower->inclusive ? ">=" : ">", lower->value);
-  if (upper) return fmt::format("{} {}", upper->inclusive ? "<=" : "<", upper->value);
+  if (!noUpper(*this)) return fmt::format("{} {}", upper->inclusive ? "<=" : "<", upper->value);
   return "";
 }
 

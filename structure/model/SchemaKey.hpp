@@ -31,6 +31,10 @@ struct KeyBound {
   bool inclusive = true;
 };
 
+/// An Integer key without an upper bound is read into an `int` (at most 2147483647, so that it never wraps);
+/// this upper bound lets it take any `long` instead (shown as no upper bound).
+inline constexpr KeyBound kAnyLong{9223372036854775807.0, true};
+
 struct SceneKey {
   std::string name;
   KeyType type = KeyType::Any;

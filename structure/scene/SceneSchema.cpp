@@ -82,9 +82,12 @@ std::optional<double> SchemaMap::optionalNumber(const std::string& key) const {
 
 long SchemaMap::integer(const std::string& key) const {
   const SceneKey& k = declared(key, {KeyType::Integer});
-  IntRange r{std::numeric_limits<long>::min(), std::numeric_limits<long>::max()};
+  IntRange r;  // without an upper bound: an int's range, so that the value never wraps when narrowed
   if (k.lower) r.lo = long(std::ceil(k.lower->value + (k.lower->inclusive ? 0.0 : 0.5)));
-  if (k.upper) r.hi = long(std::floor(k.upper->value - (k.upper->inclusive ? 0.0 : 0.5)));
+  if (k.upper && k.upper->value >= kAnyLong.value)
+    r.hi = std::numeric_limits<long>::max();
+  else if (k.upper)
+    r.hi = long(std::floor(k.upper->value - (k.upper->inclusive ? 0.0 : 0.5)));
   if (!map_.has(key)) {
     if (k.required()) map_.required(key);
     if (k.defaultValue.empty()) noDefault(k, section_.path);

@@ -8,6 +8,7 @@
 #include "structure/scene/MaterialTypes.hpp"
 #include "structure/scene/ReadControls.hpp"
 #include "structure/scene/SceneSchema.hpp"
+#include "structure/scene/effects/EffectKinds.hpp"
 #include "structure/scene/probes/ReadProbes.hpp"
 
 namespace fsi::structure {
@@ -128,6 +129,8 @@ std::vector<const SchemaSection*> sceneSchema() {
   all.push_back(&meshEntrySchema());
   for (const GeneratorKind& g : generatorKinds())
     if (g.schema) all.push_back(g.schema);
+  for (const EffectKind& e : effectKinds())
+    if (e.schema) all.push_back(e.schema);
   all.push_back(&solverSchema());
   all.push_back(&relaxationSchema());
   all.push_back(&timeSchema());

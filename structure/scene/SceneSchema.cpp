@@ -118,7 +118,7 @@ std::string SchemaMap::string(const std::string& key) const {
 
 std::vector<double> SchemaMap::numbers(const std::string& key) const {
   const SceneKey& k = declared(key, {KeyType::Numbers});
-  const std::vector<double> v = map_.numbers(key);
+  std::vector<double> v = map_.numbers(key);
   for (std::size_t i = 0; i < v.size(); ++i)
     if (!k.inRange(v[i]))
       map_.failAt(key, fmt::format("entry {}: {}", i, k.rangeMessage(fmt::format("{:g}", v[i]))));

@@ -7,6 +7,8 @@
 #include "structure/scene/GeneratorKinds.hpp"
 #include "structure/scene/MaterialTypes.hpp"
 #include "structure/scene/ReadControls.hpp"
+#include "structure/scene/ReadCoupling.hpp"
+#include "structure/scene/ReadTimeFunction.hpp"
 #include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/effects/EffectKinds.hpp"
 #include "structure/scene/probes/ReadProbes.hpp"
@@ -131,12 +133,14 @@ std::vector<const SchemaSection*> sceneSchema() {
     if (g.schema) all.push_back(g.schema);
   for (const EffectKind& e : effectKinds())
     if (e.schema) all.push_back(e.schema);
+  all.push_back(&couplingSchema());
   all.push_back(&solverSchema());
   all.push_back(&relaxationSchema());
   all.push_back(&timeSchema());
   all.push_back(&untilStaticSchema());
   all.push_back(&outputSchema());
   for (const ProbeReader& r : probeReaders()) all.push_back(r.schema);
+  for (const SchemaSection* f : timeFunctionSchemas()) all.push_back(f);
   return all;
 }
 

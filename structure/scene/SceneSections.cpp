@@ -4,6 +4,7 @@
 
 #include "structure/elements/ElementKind.hpp"
 #include "structure/model/MaterialKeys.hpp"
+#include "structure/scene/BuildConstraints.hpp"
 #include "structure/scene/GeneratorKinds.hpp"
 #include "structure/scene/MaterialTypes.hpp"
 #include "structure/scene/ReadControls.hpp"
@@ -131,6 +132,9 @@ std::vector<const SchemaSection*> sceneSchema() {
   all.push_back(&meshEntrySchema());
   for (const GeneratorKind& g : generatorKinds())
     if (g.schema) all.push_back(g.schema);
+  all.push_back(&fixSchema());
+  all.push_back(&symmetrySchema());
+  all.push_back(&prescribeSchema());
   for (const EffectKind& e : effectKinds())
     if (e.schema) all.push_back(e.schema);
   all.push_back(&couplingSchema());

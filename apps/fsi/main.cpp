@@ -41,6 +41,7 @@
 #include "structure/run/Interrupt.hpp"
 #include "structure/run/Simulation.hpp"
 #include "structure/scene/Scene.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
 namespace fs = std::filesystem;
@@ -474,6 +475,33 @@ int generateCommand(const fs::path& scenePath, const fs::path& outDir, const std
 
 }  // namespace
 
+// `fsi scene-keys`: the declared scene schema (structure/scene/SceneSchema), as a list, as the markdown of
+// docs/SCENES.md's key reference, or checked against a file's.
+int sceneKeysCommand(bool markdown, const fs::path& checkDocs) {
+  if (!checkDocs.empty()) {
+    std::ifstream is(checkDocs);
+    if (!is) throw fsi::InputError(fmt::format("{}: cannot open", checkDocs.string()));
+    std::stringstream ss;
+    ss << is.rdbuf();
+    const std::vector<std::string> problems = schemaDocsProblems(ss.str());
+    for (const std::string& p : problems) fmt::print(stderr, "{}: {}\n", checkDocs.string(), p);
+    if (problems.empty())
+      fmt::print("{}: the key reference agrees with the scene schema\n", checkDocs.string());
+    return problems.empty() ? 0 : 1;
+  }
+  if (markdown) {
+    fmt::print("{}", schemaMarkdown());
+    return 0;
+  }
+  for (const SchemaSection* sec : sceneSchema()) {
+    fmt::print("{}: {}\n", sec->path, sec->description);
+    for (const SceneKey& k : sec->keys)
+      fmt::print("  {:<20} {:<10} default {:<12} {:<24} {:<6} {}\n", k.name, toString(k.type),
+                 k.defaultText(), k.rangeText(), k.unit, k.description);
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   // The effects that live in the coupling library (pressure_field): every scene this program loads has them.
   fsi::coupling::registerCouplingEffects();
@@ -567,6 +595,15 @@ int main(int argc, char** argv) {
   fly->add_option("--out,-o", flyOut, "output directory")->required();
   fly->add_option("--set", flySets, "override a value: key.path=value (repeatable)");
   fly->add_flag("--quiet,-q", flyQuiet, "no progress output");
+  auto* sceneKeys = app.add_subcommand(
+      "scene-keys",
+      "print the declared scene schema: every key with type, default, range, unit, description");
+  bool keysMarkdown = false;
+  fs::path keysCheck;
+  sceneKeys->add_flag("--markdown", keysMarkdown, "as the key reference of docs/SCENES.md (its tables)");
+  sceneKeys->add_option(
+      "--check-docs", keysCheck,
+      "compare FILE's key reference (docs/SCENES.md) with the schema; exit 1 if they differ");
 
   // Exit codes (README): 0 done, 1 any other failure, 2 bad input (arguments included), 3 unstable, 4 not
   // converged, 130 interrupted by SIGINT, 143 by SIGTERM. CLI11's own codes (104-114) would be mistaken for
@@ -600,6 +637,7 @@ int main(int argc, char** argv) {
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
     if (*generate) return generateCommand(genScene, genOut, genSets);
     if (*fly) return flyCommand(flyFile, flyOut, flySets, flyQuiet);
+    if (*sceneKeys) return sceneKeysCommand(keysMarkdown, keysCheck);
   } catch (const fsi::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

@@ -9,31 +9,18 @@
 
 #include "structure/elements/ElementKind.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/model/MaterialKeys.hpp"
 #include "structure/model/PositiveValue.hpp"
 
 namespace fsi::structure {
 
 namespace {
 
+// The materials' ranges and messages are their keys' (model/MaterialKeys): the scene reader checks the same
+// entries, located at the key; this guards a Model built from materials made in code.
 void checkMaterials(const std::vector<MembraneMaterial>& mm, const std::vector<CableMaterial>& cm) {
-  for (const auto& m : mm) {
-    if (!isPositiveNormal(m.young))
-      throw InputError(fmt::format("material '{}': young {}", m.name, kPositiveRule));
-    if (!(m.poisson >= 0 && m.poisson < 0.5))
-      throw InputError(fmt::format("material '{}': poisson must be in [0, 0.5)", m.name));
-    if (!isPositiveNormal(m.thickness))
-      throw InputError(fmt::format("material '{}': thickness {}", m.name, kPositiveRule));
-    if (!isPositiveNormal(m.density))
-      throw InputError(fmt::format("material '{}': density {}", m.name, kPositiveRule));
-  }
-  for (const auto& m : cm) {
-    if (!isPositiveNormal(m.young))
-      throw InputError(fmt::format("material '{}': young {}", m.name, kPositiveRule));
-    if (!isPositiveNormal(m.area))
-      throw InputError(fmt::format("material '{}': area {}", m.name, kPositiveRule));
-    if (!isPositiveNormal(m.density))
-      throw InputError(fmt::format("material '{}': density {}", m.name, kPositiveRule));
-  }
+  for (const auto& m : mm) checkMaterial(m);
+  for (const auto& m : cm) checkMaterial(m);
 }
 
 // Interleaves the bits of three 21-bit integers: the Morton (Z-order) key of a point.
@@ -90,9 +77,9 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
   for (std::size_t m = 0; m < inputs.size(); ++m) {
     const MeshData& md = inputs[m].mesh;
     if (!md.triangles.empty() && inputs[m].membraneMaterial < 0)
-      throw InputError(fmt::format("mesh '{}' has triangles but no membrane material", md.name));
+      throw MeshInputError(int(m), fmt::format("mesh '{}' has triangles but no membrane material", md.name));
     if (!md.lines.empty() && inputs[m].cableMaterial < 0)
-      throw InputError(fmt::format("mesh '{}' has lines but no cable material", md.name));
+      throw MeshInputError(int(m), fmt::format("mesh '{}' has lines but no cable material", md.name));
     offset.push_back(int(pts.size()));
     for (std::size_t i = 0; i < md.points.size(); ++i) {
       pts.push_back(md.points[i]);
@@ -145,16 +132,18 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
       const auto& t = md.triangles[e];
       for (int k = 0; k < 3; ++k)
         if (t[k] < 0 || t[k] >= int(md.points.size()))
-          throw InputError(fmt::format("mesh '{}': triangle {} refers to node index {} out of range", md.name,
-                                       e < md.triangleTags.size() ? md.triangleTags[e] : long(e + 1), t[k]));
+          throw MeshInputError(
+              int(m), fmt::format("mesh '{}': triangle {} refers to node index {} out of range", md.name,
+                                  e < md.triangleTags.size() ? md.triangleTags[e] : long(e + 1), t[k]));
       tris.push_back({int(m), int(e), inputs[m].membraneMaterial, std::min({nm[t[0]], nm[t[1]], nm[t[2]]})});
     }
     for (std::size_t e = 0; e < md.lines.size(); ++e) {
       const auto& l = md.lines[e];
       for (int k = 0; k < 2; ++k)
         if (l[k] < 0 || l[k] >= int(md.points.size()))
-          throw InputError(fmt::format("mesh '{}': line {} refers to node index {} out of range", md.name,
-                                       e < md.lineTags.size() ? md.lineTags[e] : long(e + 1), l[k]));
+          throw MeshInputError(int(m),
+                               fmt::format("mesh '{}': line {} refers to node index {} out of range", md.name,
+                                           e < md.lineTags.size() ? md.lineTags[e] : long(e + 1), l[k]));
       lines.push_back({int(m), int(e), inputs[m].cableMaterial, std::min(nm[l[0]], nm[l[1]])});
     }
   }
@@ -185,8 +174,9 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
     int n[3];
     for (int k = 0; k < 3; ++k) n[k] = T.conn[3 * e + k] = model.meshes[r.mesh].node[t[k]];
     if (n[0] == n[1] || n[1] == n[2] || n[0] == n[2])
-      throw InputError(fmt::format("{} repeats a node (nodes {}, {}, {})", model.describeTriangle(e),
-                                   N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
+      throw MeshInputError(
+          r.mesh, fmt::format("{} repeats a node (nodes {}, {}, {})", model.describeTriangle(e), N.tag[n[0]],
+                              N.tag[n[1]], N.tag[n[2]]));
     double d21[3], d31[3];
     for (int k = 0; k < 3; ++k) {
       d21[k] = N.X[3 * n[1] + k] - N.X[3 * n[0] + k];
@@ -198,10 +188,10 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
     const double c0 = std::sqrt(std::max(0.0, l31 * l31 - b0 * b0));
     const double lmax = std::max(a0, l31);
     if (!(a0 > 0) || !(c0 > 1e-9 * lmax))
-      throw InputError(
-          fmt::format("{} is degenerate (zero area; nodes {}, {}, {}): check for duplicate or "
-                      "collinear nodes",
-                      model.describeTriangle(e), N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
+      throw MeshInputError(
+          r.mesh, fmt::format("{} is degenerate (zero area; nodes {}, {}, {}): check for duplicate or "
+                              "collinear nodes",
+                              model.describeTriangle(e), N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
     const MembraneMaterial& mat = model.membraneMaterials[r.material];
     const double area = 0.5 * a0 * c0;
     double* g = &T.geo[MembraneTriangles::kGeo * e];
@@ -248,15 +238,15 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
     for (int k = 0; k < 3; ++k) L += std::pow(N.X[3 * b + k] - N.X[3 * a + k], 2);
     L = std::sqrt(L);
     if (a == b || !(L > 0))
-      throw InputError(
-          fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e), N.tag[a], N.tag[b]));
+      throw MeshInputError(r.mesh, fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e),
+                                               N.tag[a], N.tag[b]));
     const CableMaterial& mat = model.cableMaterials[r.material];
     if (std::size_t(r.local) < md.lineRestLength.size() && md.lineRestLength[std::size_t(r.local)] != 0.0) {
       // A line rigged longer than the distance of its ends: slack (no tension) until stretched to it.
       const double L0 = md.lineRestLength[std::size_t(r.local)];
       if (!(std::isfinite(L0) && L0 > 0))
-        throw InputError(
-            fmt::format("{} has rest length {} (must be positive and finite)", model.describeCable(e), L0));
+        throw MeshInputError(r.mesh, fmt::format("{} has rest length {} (must be positive and finite)",
+                                                 model.describeCable(e), L0));
       L = L0;
     }
     C.restLength[e] = L;
@@ -281,7 +271,8 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
   for (const ElementKind* kind : elementKinds()) kind->addLumpedMass(model, N.mass);
   for (int i = 0; i < N.count; ++i)
     if (!(N.mass[i] > 0))
-      throw InputError(fmt::format("{} belongs to no element and has no mass", model.describeNode(i)));
+      throw MeshInputError(N.mesh[i],
+                           fmt::format("{} belongs to no element and has no mass", model.describeNode(i)));
   N.physicalMass = N.mass;
   N.invMassDof.resize(3 * N.count);
   for (int i = 0; i < N.count; ++i)

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "structure/model/Error.hpp"
+#include "structure/model/MaterialKeys.hpp"
 #include "structure/scene/JoinNames.hpp"
 #include "structure/scene/NearestName.hpp"
 #include "structure/scene/ReadMaterials.hpp"
@@ -54,9 +55,7 @@ void PointMassKind::build(const std::vector<MeshInput>& inputs, const MaterialTa
                           Model& model) const {
   PointMasses P;
   P.materials = materials.pointMass;
-  for (const auto& m : P.materials)
-    if (!(m.mass > 0) || !std::isfinite(m.mass))
-      throw InputError(fmt::format("material '{}': mass must be finite and > 0", m.name));
+  for (const auto& m : P.materials) checkMaterial(m);  // the key's range and message (model/MaterialKeys)
   for (std::size_t m = 0; m < inputs.size(); ++m) {
     const auto it = inputs[m].kindInputs.find(name());
     if (it == inputs[m].kindInputs.end()) continue;
@@ -65,10 +64,12 @@ void PointMassKind::build(const std::vector<MeshInput>& inputs, const MaterialTa
     for (const auto& [local, material] : std::any_cast<const PointMassInput&>(it->second)) {
       ++number;
       if (local < 0 || local >= int(md.points.size()))
-        throw InputError(fmt::format("mesh '{}': point mass {} refers to node index {} out of range", md.name,
-                                     number, local));
+        throw MeshInputError(
+            int(m), fmt::format("mesh '{}': point mass {} refers to node index {} out of range", md.name,
+                                number, local));
       if (material < 0 || material >= int(P.materials.size()))
-        throw InputError(fmt::format("mesh '{}': point mass {} has no point_mass material", md.name, number));
+        throw MeshInputError(
+            int(m), fmt::format("mesh '{}': point mass {} has no point_mass material", md.name, number));
       P.node.push_back(model.meshes[m].node[local]);
       P.mass.push_back(P.materials[material].mass);
       P.tag.push_back(number);

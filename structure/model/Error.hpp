@@ -12,4 +12,15 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// An InputError about one mesh of a model being built: mesh() is its index among the builder's inputs, so
+/// that the scene reader puts the message at that mesh's entry (its file or generator) without reading it.
+class MeshInputError : public InputError {
+ public:
+  MeshInputError(int mesh, const std::string& message) : InputError(message), mesh_(mesh) {}
+  int mesh() const { return mesh_; }
+
+ private:
+  int mesh_;
+};
+
 }  // namespace fsi

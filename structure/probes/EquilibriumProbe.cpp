@@ -10,16 +10,8 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "supports"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.reduce = ProbeReduce::Value;
-  spec.nodes = sets.nodes(p.required("supports"), p.childPath("supports"));
-  p.finish(kKeys);
-}
-
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Nodes& N = state.scene().model->nodes;
+  const Nodes& N = state.model().nodes;
   double load[3] = {0, 0, 0}, sum[3] = {0, 0, 0};
   for (int n = 0; n < N.count; ++n)
     for (int k = 0; k < 3; ++k) load[k] += N.fext[3 * n + k];
@@ -35,9 +27,9 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind equilibriumProbe() {
-  return {"equilibrium_error", kKeys,
+  return {"equilibrium_error",
           "|support reactions + applied load| / |applied load|: 0 at a static state (global equilibrium)",
-          parse, evaluate};
+          evaluate};
 }
 
 }  // namespace fsi::structure

@@ -14,25 +14,8 @@ namespace fsi::structure {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const std::vector<std::string> kKeys{"type", "triangles", "angle"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.reduce = ProbeReduce::Value;
-  spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
-  spec.angle = p.number("angle", 90.0);
-  if (!(spec.angle > 0 && spec.angle < 180))
-    p.failAt("angle", fmt::format("is {}; valid: between 0 and 180 degrees (exclusive)", spec.angle));
-  p.finish(kKeys);
-  // The hinges, once, into spec.nodes (4 nodes each).
-  const auto& conn = sets.model().membranes.conn;
-  std::vector<int> subset;
-  for (int t : spec.triangles)
-    for (int k = 0; k < 3; ++k) subset.push_back(conn[3 * std::size_t(t) + std::size_t(k)]);
-  spec.nodes = interiorHinges(subset).nodes;
-}
-
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Nodes& N = state.scene().model->nodes;
+  const Nodes& N = state.model().nodes;
   const double limit = p.angle * kPi / 180.0;
   int folds = 0;
   for (std::size_t h = 0; h + 3 < p.nodes.size(); h += 4) {
@@ -49,10 +32,10 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind foldsProbe() {
-  return {"folds", kKeys,
+  return {"folds",
           "interior edges of triangles turned by more than `angle` degrees from the reference (element-scale "
           "creases)",
-          parse, evaluate};
+          evaluate};
 }
 
 }  // namespace fsi::structure

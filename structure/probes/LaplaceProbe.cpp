@@ -7,6 +7,8 @@
 // node over its tributary area, so it checks the discrete solution against the continuum law without knowing
 // which loads act. Quantities: ratio = (N:b)/p (1 in the limit), simple_ratio = N_dd·b_dd/p (the
 // one-direction bulge relation T/(p·r) along `direction`), radius = 1/b_dd, tension = N_dd, pressure = p.
+#include "structure/probes/LaplaceProbe.hpp"
+
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -19,61 +21,8 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type",      "nodes", "triangles", "quantity",
-                                     "direction", "rings", "reduce"};
-
 void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int node, int rings,
                    std::vector<int>& own, std::vector<int>& patch, std::vector<int>& ring);
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
-  spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
-  static const std::vector<std::pair<std::string, LaplaceQuantity>> names{
-      {"ratio", LaplaceQuantity::Ratio},
-      {"simple_ratio", LaplaceQuantity::SimpleRatio},
-      {"radius", LaplaceQuantity::Radius},
-      {"tension", LaplaceQuantity::Tension},
-      {"pressure", LaplaceQuantity::Pressure}};
-  const std::string q = p.choice("quantity", {"ratio", "simple_ratio", "radius", "tension", "pressure"});
-  for (const auto& [name, value] : names)
-    if (name == q) spec.laplace = value;
-  const bool directional =
-      spec.laplace != LaplaceQuantity::Ratio && spec.laplace != LaplaceQuantity::Pressure;
-  if (directional) {
-    spec.direction = p.vec3("direction");
-    const auto& d = spec.direction;
-    if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0)) p.failAt("direction", "must not be the zero vector");
-  } else if (p.has("direction")) {
-    p.failAt("direction",
-             fmt::format("is only used by the quantities simple_ratio, radius and tension, not {}", q));
-  }
-  spec.reduce = readReduce(p, {"value", "mean", "max", "min"}, "value");
-  spec.rings = int(p.integer("rings", 2, {1, 20}));
-  p.finish(kKeys);
-  // The fit needs the node inside the surface (every edge at it shared by two of the triangles: a fit from
-  // one side of an edge extrapolates) and at least 6 neighbours, the quadric's unknowns.
-  const Model& model = sets.model();
-  std::vector<int> tris, patch, ring;
-  for (int n : spec.nodes) {
-    neighbourhood(model.membranes, spec.triangles, n, spec.rings, tris, patch, ring);
-    std::vector<int> edgeEnds;
-    for (int e : tris)
-      for (int k = 0; k < 3; ++k)
-        if (model.membranes.conn[3 * e + k] != n) edgeEnds.push_back(model.membranes.conn[3 * e + k]);
-    std::sort(edgeEnds.begin(), edgeEnds.end());
-    bool inside = !edgeEnds.empty();
-    for (std::size_t i = 0; i < edgeEnds.size(); ++i) {
-      const bool paired = (i + 1 < edgeEnds.size() && edgeEnds[i + 1] == edgeEnds[i]) ||
-                          (i > 0 && edgeEnds[i - 1] == edgeEnds[i]);
-      inside = inside && paired;
-    }
-    if (!inside || ring.size() < 6)
-      p.failAt("nodes",
-               fmt::format("node {} is {} of the probe's triangles ({} neighbours); the curvature fit "
-                           "needs a node inside the surface with at least 6 neighbours",
-                           model.nodes.tag[n], tris.empty() ? "not on any" : "on the edge", ring.size()));
-  }
-}
 
 using V3 = Eigen::Vector3d;
 
@@ -114,7 +63,7 @@ void neighbourhood(const MembraneTriangles& T, const std::vector<int>& set, int 
 }
 
 double evaluateAt(const ProbeSpec& p, ProbeState& state, int node) {
-  const Model& model = *state.scene().model;
+  const Model& model = state.model();
   const Nodes& N = model.nodes;
   const MembraneTriangles& T = model.membranes;
   std::vector<int> tris, patch, ring;
@@ -206,11 +155,34 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 
 }  // namespace
 
+std::string laplaceFitProblem(const Model& model, const std::vector<int>& triangles, int node, int rings) {
+  // The fit needs the node inside the surface (every edge at it shared by two of the triangles: a fit from
+  // one side of an edge extrapolates) and at least 6 neighbours, the quadric's unknowns.
+  std::vector<int> tris, patch, ring;
+  neighbourhood(model.membranes, triangles, node, rings, tris, patch, ring);
+  std::vector<int> edgeEnds;
+  for (int e : tris)
+    for (int k = 0; k < 3; ++k)
+      if (model.membranes.conn[3 * e + k] != node) edgeEnds.push_back(model.membranes.conn[3 * e + k]);
+  std::sort(edgeEnds.begin(), edgeEnds.end());
+  bool inside = !edgeEnds.empty();
+  for (std::size_t i = 0; i < edgeEnds.size(); ++i) {
+    const bool paired = (i + 1 < edgeEnds.size() && edgeEnds[i + 1] == edgeEnds[i]) ||
+                        (i > 0 && edgeEnds[i - 1] == edgeEnds[i]);
+    inside = inside && paired;
+  }
+  if (inside && ring.size() >= 6) return "";
+  return fmt::format(
+      "node {} is {} of the probe's triangles ({} neighbours); the curvature fit needs a node "
+      "inside the surface with at least 6 neighbours",
+      model.nodes.tag[node], tris.empty() ? "not on any" : "on the edge", ring.size());
+}
+
 ProbeKind laplaceProbe() {
   return {
-      "laplace", kKeys,
+      "laplace",
       "membrane normal equilibrium at nodes: (N:b)/p from the fitted curvature, the stresses and the load",
-      parse, evaluate};
+      evaluate};
 }
 
 }  // namespace fsi::structure

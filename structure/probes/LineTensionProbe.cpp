@@ -7,16 +7,8 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "lines", "reduce"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.lines = sets.lines(p.required("lines"), p.childPath("lines"));
-  spec.reduce = readReduce(p, {"max", "min", "mean", "sum"}, "max");
-  p.finish(kKeys);
-}
-
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Model& m = *state.scene().model;
+  const Model& m = state.model();
   std::vector<double> tension;
   cableTensions(m.cables, m.nodes.x.data(), tension);
   for (int e : p.lines) vals.push_back(tension[e]);
@@ -25,8 +17,7 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind lineTensionProbe() {
-  return {"line_tension", kKeys, "the tension of a set of cables [N], reduced (max, min, mean, sum)", parse,
-          evaluate};
+  return {"line_tension", "the tension of a set of cables [N], reduced (max, min, mean, sum)", evaluate};
 }
 
 }  // namespace fsi::structure

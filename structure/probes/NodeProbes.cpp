@@ -9,22 +9,8 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "nodes", "component", "center", "reduce"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
-  spec.component = readComponent(p, {"x", "y", "z", "magnitude", "radial"});
-  spec.center = p.vec3("center", {0, 0, 0});
-  spec.reduce = readReduce(p, {"value", "mean", "max", "min"}, "value");
-  if (spec.reduce == ProbeReduce::Value && spec.nodes.size() != 1)
-    p.failAt("nodes", fmt::format("selects {} nodes; 'reduce: value' needs exactly one (use nearest, or "
-                                  "reduce: mean | max | min)",
-                                  spec.nodes.size()));
-  p.finish(kKeys);
-}
-
 void displacement(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Nodes& N = state.scene().model->nodes;
+  const Nodes& N = state.model().nodes;
   for (int n : p.nodes) {
     const double u[3] = {N.x[3 * n] - N.X[3 * n], N.x[3 * n + 1] - N.X[3 * n + 1],
                          N.x[3 * n + 2] - N.X[3 * n + 2]};
@@ -42,7 +28,7 @@ void displacement(const ProbeSpec& p, ProbeState& state, std::vector<double>& va
 }
 
 void position(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Nodes& N = state.scene().model->nodes;
+  const Nodes& N = state.model().nodes;
   const bool radial = p.component == ProbeComponent::Radial;
   for (int n : p.nodes) {
     double r[3];
@@ -54,13 +40,11 @@ void position(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind displacementProbe() {
-  return {"displacement", kKeys, "a component of the displacement of a node (or reduced over nodes)", parse,
-          displacement};
+  return {"displacement", "a component of the displacement of a node (or reduced over nodes)", displacement};
 }
 
 ProbeKind positionProbe() {
-  return {"position", kKeys, "a component of the position of a node (or reduced over nodes)", parse,
-          position};
+  return {"position", "a component of the position of a node (or reduced over nodes)", position};
 }
 
 }  // namespace fsi::structure

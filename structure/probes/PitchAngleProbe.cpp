@@ -10,15 +10,6 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "from", "to"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.reduce = ProbeReduce::Value;
-  spec.nodes = sets.nodes(p.required("from"), p.childPath("from"));
-  spec.nodesTo = sets.nodes(p.required("to"), p.childPath("to"));
-  p.finish(kKeys);
-}
-
 void mean(const Nodes& N, const std::vector<int>& nodes, double c[3]) {
   c[0] = c[1] = c[2] = 0;
   for (int n : nodes)
@@ -26,7 +17,7 @@ void mean(const Nodes& N, const std::vector<int>& nodes, double c[3]) {
 }
 
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Nodes& N = state.scene().model->nodes;
+  const Nodes& N = state.model().nodes;
   double a[3], b[3];
   mean(N, p.nodes, a);
   mean(N, p.nodesTo, b);
@@ -36,8 +27,8 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind pitchAngleProbe() {
-  return {"pitch_angle", kKeys,
-          "nose-up angle [deg] in the x-z plane of the chord from one node set to another", parse, evaluate};
+  return {"pitch_angle", "nose-up angle [deg] in the x-z plane of the chord from one node set to another",
+          evaluate};
 }
 
 }  // namespace fsi::structure

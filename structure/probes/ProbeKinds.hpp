@@ -1,34 +1,36 @@
 #pragma once
-// The registry of probe kinds: every kind is one entry {name, keys, description, parse, evaluate}. The valid
-// `type:` values of a probe (and their "did you mean") come from this table. Adding a probe = one file with
-// its parse and evaluate functions + one registration in ProbeRegistry.cpp (docs/ARCHITECTURE.md, "How to add
-// a probe"). Probes are evaluated at output times only, never in the step loop.
+// The registry of probe kinds: what each probe computes. Every kind is one entry {name, description,
+// evaluate} over a ProbeSpec (its nodes, triangles, lines and options, resolved at load time). How a scene
+// spells a probe (its keys, their checks, the sets they resolve) is the scene's: a reader per kind in
+// structure/scene/probes/, registered there under the same name. Adding a probe = one file here with its
+// evaluate function + one registration in ProbeRegistry.cpp, and its reader + one line in
+// scene/probes/ReadProbes.cpp (docs/ARCHITECTURE.md, "How to add a probe"). Probes are evaluated at output
+// times only, never in the step loop.
 
-#include <map>
 #include <string>
 #include <vector>
 
 #include "structure/elements/MembraneForces.hpp"
+#include "structure/integrate/Constraints.hpp"
+#include "structure/model/Model.hpp"
 #include "structure/probes/ProbeSpec.hpp"
-#include "structure/scene/Scene.hpp"
-#include "structure/scene/SetResolver.hpp"
-#include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
 
-/// What a probe's evaluate function may read: the scene's current state, the membrane stresses and the
+/// What a probe's evaluate function may read: the model's current state, the membrane stresses and the
 /// nodes' reactions (each computed once per evaluation, on first use).
 class ProbeState {
  public:
-  explicit ProbeState(const Scene& scene) : scene_(scene) {}
-  const Scene& scene() const { return scene_; }
+  ProbeState(const Model& model, const Constraints& constraints) : model_(model), constraints_(constraints) {}
+  const Model& model() const { return model_; }
   const MembraneStressField& membraneStress();
   /// The reaction f_int − f_ext of every node (3 per node), tie forces left out (Constraints::reactions):
   /// what the supports exert, plus −m·a on moving nodes. Computed once per evaluation, on first use.
   const std::vector<double>& reactions();
 
  private:
-  const Scene& scene_;
+  const Model& model_;
+  const Constraints& constraints_;
   MembraneStressField stress_;
   bool haveStress_ = false;
   std::vector<double> reactions_;
@@ -36,11 +38,8 @@ class ProbeState {
 };
 
 struct ProbeKind {
-  std::string name;               ///< the probe's `type:`
-  std::vector<std::string> keys;  ///< the keys of its entry (with `type`)
-  std::string description;        ///< one line, for docs and messages
-  /// Reads the entry (calling entry.finish(keys)) into `spec`; selectors resolve through `sets`.
-  void (*parse)(const YamlMap& entry, const SetResolver& sets, ProbeSpec& spec) = nullptr;
+  std::string name;         ///< the probe's `type:`
+  std::string description;  ///< one line, for docs and messages
   /// Appends the probe's values (one per node/triangle, or one in all) for its reduction.
   void (*evaluate)(const ProbeSpec& spec, ProbeState& state, std::vector<double>& values) = nullptr;
 };
@@ -48,15 +47,8 @@ struct ProbeKind {
 /// Every probe kind, in the order their names are listed in messages.
 const std::vector<ProbeKind>& probeKinds();
 
-/// Reads the `probes:` section of the top-level map `top`.
-std::vector<ProbeSpec> readProbes(const YamlMap& top, const SetResolver& sets);
-
-/// `component:` of a probe entry, one of `allowed` (names x, y, z, magnitude, radial).
-ProbeComponent readComponent(const YamlMap& entry, const std::vector<std::string>& allowed);
-
-/// `reduce:` of a probe entry, one of `allowed` (names value, mean, max, min, sum).
-ProbeReduce readReduce(const YamlMap& entry, const std::vector<std::string>& allowed,
-                       const std::string& fallback);
+/// The kind named `name`, or nullptr.
+const ProbeKind* findProbeKind(const std::string& name);
 
 /// The x, y or z component or the magnitude of a vector (Radial is the caller's: it needs a centre).
 double vectorComponent(const double* v, ProbeComponent c);

@@ -8,20 +8,11 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "nodes", "component"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.reduce = ProbeReduce::Sum;
-  spec.nodes = sets.nodes(p.required("nodes"), p.childPath("nodes"));
-  spec.component = readComponent(p, {"x", "y", "z", "magnitude"});
-  p.finish(kKeys);
-}
-
 // Σ over the nodes of f_int − f_ext (the reaction; tie forces left out, ProbeState::reactions) or of f_ext
 // (the applied load), as the probe's component.
 template <bool Reaction>
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Nodes& N = state.scene().model->nodes;
+  const Nodes& N = state.model().nodes;
   const double* reaction = Reaction ? state.reactions().data() : nullptr;
   double r[3] = {0, 0, 0};
   for (int n : p.nodes)
@@ -32,13 +23,12 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind reactionProbe() {
-  return {"reaction", kKeys, "a component of the reaction force summed over a set of nodes", parse,
-          evaluate<true>};
+  return {"reaction", "a component of the reaction force summed over a set of nodes", evaluate<true>};
 }
 
 ProbeKind appliedLoadProbe() {
-  return {"applied_load", kKeys, "a component of the external (applied) force summed over a set of nodes",
-          parse, evaluate<false>};
+  return {"applied_load", "a component of the external (applied) force summed over a set of nodes",
+          evaluate<false>};
 }
 
 }  // namespace fsi::structure

@@ -8,23 +8,6 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "triangles", "quantity", "reduce"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
-  spec.quantity = p.choice("quantity", {"max_principal", "min_principal"}, "max_principal") == "min_principal"
-                      ? StressQuantity::MinPrincipal
-                      : StressQuantity::MaxPrincipal;
-  spec.reduce = readReduce(p, {"max", "min", "mean"}, "max");
-  // The mean is over the surface (area-weighted, current areas): on a graded mesh an element count would
-  // weight small triangles as much as large ones.
-  if (spec.reduce == ProbeReduce::Mean) {
-    spec.areaWeighted = true;
-    spec.reduce = ProbeReduce::Sum;
-  }
-  p.finish(kKeys);
-}
-
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
   const MembraneStressField& stress = state.membraneStress();
   // principal holds (max, min) per element.
@@ -33,7 +16,7 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
     for (int e : p.triangles) vals.push_back(stress.principal[2 * e + which]);
     return;
   }
-  const Model& model = *state.scene().model;
+  const Model& model = state.model();
   const std::vector<double>& x = model.nodes.x;
   const std::size_t first = vals.size();
   double total = 0;
@@ -55,8 +38,7 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind stressProbe() {
-  return {"stress", kKeys, "the max or min principal membrane stress over a set of triangles", parse,
-          evaluate};
+  return {"stress", "the max or min principal membrane stress over a set of triangles", evaluate};
 }
 
 }  // namespace fsi::structure

@@ -5,16 +5,8 @@ namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"type", "triangles", "center"};
-
-void parse(const YamlMap& p, const SetResolver& sets, ProbeSpec& spec) {
-  spec.triangles = sets.triangles(p.required("triangles"), p.childPath("triangles"));
-  spec.center = p.vec3("center", {0, 0, 0});
-  p.finish(kKeys);
-}
-
 void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) {
-  const Model& model = *state.scene().model;
+  const Model& model = state.model();
   const Nodes& N = model.nodes;
   // Divergence theorem about `center`: symmetry planes through the centre add nothing.
   double v = 0;
@@ -35,7 +27,7 @@ void evaluate(const ProbeSpec& p, ProbeState& state, std::vector<double>& vals) 
 }  // namespace
 
 ProbeKind volumeProbe() {
-  return {"volume", kKeys, "the volume enclosed by a set of triangles about a centre", parse, evaluate};
+  return {"volume", "the volume enclosed by a set of triangles about a centre", evaluate};
 }
 
 }  // namespace fsi::structure

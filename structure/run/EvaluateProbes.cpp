@@ -34,7 +34,7 @@ double reduceValues(const std::vector<double>& vals, ProbeReduce r) {
 
 std::map<std::string, double> evaluateProbes(const Scene& scene) {
   std::map<std::string, double> out;
-  ProbeState state(scene);
+  ProbeState state(*scene.model, scene.constraints);
   std::vector<double> vals;
   for (const ProbeSpec& p : scene.probes) {
     vals.clear();

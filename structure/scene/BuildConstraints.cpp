@@ -8,8 +8,78 @@
 
 #include "structure/scene/ExtrudeTies.hpp"
 #include "structure/scene/ReadTimeFunction.hpp"
+#include "structure/scene/SceneSchema.hpp"
 
 namespace fsi::structure {
+
+const SchemaSection& fixSchema() {
+  static const SchemaSection s{"constraints[i] (fix)",
+                               "hold displacement components of nodes at zero",
+                               {{"nodes", KeyType::Selector, "", "", "required", {}, {}, {}, "the nodes"},
+                                {"fix",
+                                 KeyType::Strings,
+                                 "",
+                                 "",
+                                 "required",
+                                 {},
+                                 {},
+                                 {"x", "y", "z", "all"},
+                                 "the components held: x, y, z or all, or a list of them"}}};
+  return s;
+}
+
+const SchemaSection& symmetrySchema() {
+  static const SchemaSection s{
+      "constraints[i].symmetry",
+      "every node within tolerance of the plane: an axis normal fixes that component, an oblique one slides",
+      {{"point", KeyType::Vec3, "m", "[0, 0, 0]", "", {}, {}, {}, "a point of the plane"},
+       {"normal", KeyType::Vec3, "-", "", "required", {}, {}, {}, "the plane's normal (non-zero)"},
+       {"tolerance",
+        KeyType::Number,
+        "m",
+        "1e-9",
+        "",
+        {},
+        {},
+        {},
+        "distance from the plane that counts as on it"}}};
+  return s;
+}
+
+const SchemaSection& prescribeSchema() {
+  static const SchemaSection s{
+      "constraints[i].prescribe",
+      "drive the nodes to X + a f(t) along a component or a direction (with `nodes` beside it)",
+      {{"component",
+        KeyType::Choice,
+        "",
+        "",
+        "this or direction",
+        {},
+        {},
+        {"x", "y", "z"},
+        "the coordinate driven"},
+       {"direction",
+        KeyType::Vec3,
+        "-",
+        "",
+        "this or component",
+        {},
+        {},
+        {},
+        "drive the whole position along this line (finite, non-zero)"},
+       {"amplitude", KeyType::Number, "m", "", "required", {}, {}, {}, "a"},
+       {"function",
+        KeyType::Any,
+        "",
+        "",
+        "constant 1",
+        {},
+        {},
+        {},
+        "f(t) (docs/SCENES.md, Time functions)"}}};
+  return s;
+}
 
 Constraints buildConstraints(const YamlMap& top, const Model& model, const SetResolver& sets) {
   Constraints constraints;
@@ -27,9 +97,10 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
     for (std::size_t i = 0; i < list.size(); ++i) {
       YamlMap c(list[i], fileName, fmt::format("constraints[{}]", i));
       if (c.has("fix")) {
+        const SchemaMap f(c, fixSchema());
         const auto nodes = sets.nodes(c.required("nodes"), c.childPath("nodes"));
         for (const auto& comp : c.strings("fix")) {
-          static const std::vector<std::string> valid{"x", "y", "z", "all"};
+          const std::vector<std::string>& valid = f.section().key("fix").choices;
           if (std::find(valid.begin(), valid.end(), comp) == valid.end())
             c.failAt("fix", fmt::format("'{}' is not a component; valid: x, y, z, all", comp));
           for (int n : nodes)
@@ -39,15 +110,16 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
                 origins.fixedBy[3 * n + k] = int(i);
               }
         }
-        c.finish({"nodes", "fix"});
+        f.finish();
       } else if (c.has("symmetry")) {
-        YamlMap s = c.map("symmetry");
-        const auto pt = s.vec3("point", {0, 0, 0});
+        YamlMap sMap = c.map("symmetry");
+        const SchemaMap s(sMap, symmetrySchema());
+        const auto pt = s.vec3("point");
         auto n = s.vec3("normal");
-        const double tol = s.number("tolerance", 1e-9);
-        s.finish({"point", "normal", "tolerance"});
+        const double tol = s.number("tolerance");
+        s.finish();
         const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (!(len > 0)) s.failAt("normal", "must not be zero");
+        if (!(len > 0)) sMap.failAt("normal", "must not be zero");
         for (auto& v : n) v /= len;
         int axis = -1;
         for (int k = 0; k < 3; ++k)
@@ -72,7 +144,8 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
       } else if (c.has("prescribe")) {
         const auto nodes = sets.nodes(c.required("nodes"), c.childPath("nodes"));
         YamlMap p = c.map("prescribe");
-        const double amp = p.number("amplitude");
+        const SchemaMap ps(p, prescribeSchema());
+        const double amp = ps.number("amplitude");
         const TimeFunction fn = readTimeFunction(p, "function");
         // A direction d prescribes the whole displacement a·f(t)·d/|d|: one component motion per axis (those
         // with d_k = 0 are held), so the node follows the line exactly and the integrators' per-component
@@ -86,10 +159,10 @@ Constraints buildConstraints(const YamlMap& top, const Model& model, const SetRe
           if (!(len > 0) || !std::isfinite(len)) p.failAt("direction", "must be a finite, non-zero vector");
           for (double& d : along) d /= len;
         } else if (byComponent) {
-          const std::string componentName = p.choice("component", {"x", "y", "z"});
+          const std::string componentName = ps.string("component");
           along[componentName == "x" ? 0 : componentName == "y" ? 1 : 2] = 1.0;
         }
-        p.finish({"component", "direction", "amplitude", "function"});  // a misspelt key first
+        ps.finish();  // a misspelt key first
         if (!byDirection && !byComponent)
           p.fail("give either 'component: x|y|z' or 'direction: [dx, dy, dz]'");
         for (int n : nodes) {

@@ -13,92 +13,222 @@ std::vector<int> toInts(const std::vector<long>& v) {
   return std::vector<int>(v.begin(), v.end());
 }
 
-RectangleParams rectangleParams(const YamlMap& g) {
-  RectangleParams p;
-  const auto size = g.numbers("size");
-  const auto div = g.integers("divisions");
-  if (size.size() != 2) g.failAt("size", "expected [Lx, Ly]");
-  if (div.size() != 2) g.failAt("divisions", "expected [nx, ny]");
-  p.size = {size[0], size[1]};
-  p.divisions = {int(div[0]), int(div[1])};
-  p.center = g.vec3("center", {0, 0, 0});
-  p.pattern = g.choice("pattern", {"ruled", "alternating", "cross"}, "ruled");
-  return p;
+// ---------------------------------------------------------------- the entries' schema sections
+
+using T = KeyType;
+constexpr KeyBound kAboveZero{0, false};
+constexpr KeyBound kAtLeastOne{1, true};
+
+SceneKey typeKey(const char* name) {
+  return {"type", T::Choice, "", "", "required", {}, {}, {name}, "the generator"};
 }
 
-DiscParams discParams(const YamlMap& g) {
-  DiscParams p;
-  p.radius = g.number("radius");
-  p.rings = int(g.integer("rings"));
-  p.center = g.vec3("center", {0, 0, 0});
-  return p;
+// The keys a rectangle and a disc share with the pillow of that shape.
+std::vector<SceneKey> rectangleKeys() {
+  return {{"size", T::Numbers, "m", "", "required", kAboveZero, {}, {}, "[Lx, Ly]"},
+          {"divisions", T::Any, "", "", "required", {}, {}, {}, "[nx, ny], integers >= 1"},
+          {"center", T::Vec3, "m", "[0, 0, 0]", "", {}, {}, {}, "the centre"},
+          {"pattern",
+           T::Choice,
+           "",
+           "ruled",
+           "",
+           {},
+           {},
+           {"ruled", "alternating", "cross"},
+           "how squares are cut into triangles (cross: 4 per square about a centre node)"}};
+}
+
+std::vector<SceneKey> discKeys() {
+  return {{"radius", T::Number, "m", "", "required", kAboveZero, {}, {}, "the radius"},
+          {"rings", T::Integer, "", "", "required", kAtLeastOne, {}, {}, "rings of nodes (ring k has 6k)"},
+          {"center", T::Vec3, "m", "[0, 0, 0]", "", {}, {}, {}, "the centre"}};
+}
+
+SchemaSection section(const char* name, const char* description, std::vector<SceneKey> keys) {
+  keys.insert(keys.begin(), typeKey(name));
+  return {std::string("meshes.NAME.generator (") + name + ")", description, std::move(keys)};
+}
+
+const SchemaSection& rectangleSchema() {
+  static const SchemaSection s = section("rectangle", "flat rectangle, normal +z", rectangleKeys());
+  return s;
+}
+
+const SchemaSection& discSchema() {
+  static const SchemaSection s = section("disc", "flat disc of hexagonal rings, normal +z", discKeys());
+  return s;
+}
+
+const SchemaSection& sphereOctantSchema() {
+  static const SchemaSection s =
+      section("sphere_octant", "one eighth of a sphere about the origin, normal outward",
+              {{"radius", T::Number, "m", "", "required", kAboveZero, {}, {}, "the radius"},
+               {"divisions", T::Integer, "", "", "required", kAtLeastOne, {}, {}, "divisions per edge"}});
+  return s;
+}
+
+const SchemaSection& cableChainSchema() {
+  static const SchemaSection s =
+      section("cable_chain", "cable lines along a polyline",
+              {{"points", T::Any, "m", "", "required", {}, {}, {}, "[[x, y, z], ...], at least 2"},
+               {"divisions",
+                T::Any,
+                "",
+                "",
+                "required",
+                {},
+                {},
+                {},
+                "cables per segment: one integer >= 1 for all, or one per segment"}});
+  return s;
+}
+
+const SchemaSection& stripSchema() {
+  static const SchemaSection s =
+      section("strip", "strip swept from a polyline by a width vector",
+              {{"path", T::Any, "m", "", "required", {}, {}, {}, "[[x, y, z], ...], at least 2"},
+               {"divisions",
+                T::Any,
+                "",
+                "",
+                "required",
+                {},
+                {},
+                {},
+                "elements per segment: one integer >= 1 for all, or one per segment"},
+               {"width", T::Vec3, "m", "", "required", {}, {}, {}, "the sweep (not parallel to any segment)"},
+               {"across", T::Integer, "", "1", "", kAtLeastOne, {}, {}, "elements across the width"},
+               {"pattern",
+                T::Choice,
+                "",
+                "ruled",
+                "",
+                {},
+                {},
+                {"ruled", "alternating"},
+                "how quadrilaterals are cut into triangles"}});
+  return s;
+}
+
+// The keys of a pillow depend on its shape: those of the rectangle or of the disc generator.
+const SchemaSection& pillowSchema() {
+  static const SchemaSection s = [] {
+    std::vector<SceneKey> keys{{"shape",
+                                T::Choice,
+                                "",
+                                "",
+                                "required",
+                                {},
+                                {},
+                                {"rectangle", "disc"},
+                                "the faces' shape; then that generator's keys"}};
+    for (const SceneKey& k : rectangleKeys()) keys.push_back(k);
+    for (const SceneKey& k : discKeys())
+      if (k.name != "center") keys.push_back(k);
+    return section("pillow", "two faces (rectangle or disc) joined at their rim", keys);
+  }();
+  return s;
+}
+
+const SchemaSection& pillowRectangleSchema() {
+  static const SchemaSection s = [] {
+    std::vector<SceneKey> keys{pillowSchema().key("shape")};
+    for (const SceneKey& k : rectangleKeys()) keys.push_back(k);
+    return section("pillow", "", keys);
+  }();
+  return s;
+}
+
+const SchemaSection& pillowDiscSchema() {
+  static const SchemaSection s = [] {
+    std::vector<SceneKey> keys{pillowSchema().key("shape")};
+    for (const SceneKey& k : discKeys()) keys.push_back(k);
+    return section("pillow", "", keys);
+  }();
+  return s;
 }
 
 // ---------------------------------------------------------------- one reader per generator
 
-// The keys of each generator entry (the registry lists them; the readers check them).
-const std::vector<std::string> kRectangleKeys{"type", "size", "divisions", "center", "pattern"};
-const std::vector<std::string> kDiscKeys{"type", "radius", "rings", "center"};
-const std::vector<std::string> kSphereOctantKeys{"type", "radius", "divisions"};
-const std::vector<std::string> kCableChainKeys{"type", "points", "divisions"};
-const std::vector<std::string> kStripKeys{"type", "path", "divisions", "width", "across", "pattern"};
-const std::vector<std::string> kPillowRectangleKeys{"type",      "shape",  "size",
-                                                    "divisions", "center", "pattern"};
-const std::vector<std::string> kPillowDiscKeys{"type", "shape", "radius", "rings", "center"};
-const std::vector<std::string> kPillowKeys{"type",   "shape",   "size",   "divisions",
-                                           "center", "pattern", "radius", "rings"};
+RectangleParams rectangleParams(const SchemaMap& g) {
+  RectangleParams p;
+  const auto size = g.numbers("size");
+  const auto div = g.map().integers("divisions");
+  if (size.size() != 2) g.map().failAt("size", "expected [Lx, Ly]");
+  if (div.size() != 2) g.map().failAt("divisions", "expected [nx, ny]");
+  p.size = {size[0], size[1]};
+  p.divisions = {int(div[0]), int(div[1])};
+  p.center = g.vec3("center");
+  p.pattern = g.string("pattern");
+  return p;
+}
 
-MeshData rectangleFrom(const YamlMap& g, const std::string& name) {
+DiscParams discParams(const SchemaMap& g) {
+  DiscParams p;
+  p.radius = g.number("radius");
+  p.rings = int(g.integer("rings"));
+  p.center = g.vec3("center");
+  return p;
+}
+
+MeshData rectangleFrom(const YamlMap& entry, const std::string& name) {
+  const SchemaMap g(entry, rectangleSchema());
   auto p = rectangleParams(g);
-  g.finish(kRectangleKeys);
-  return locatedGenerate(g, rectangle, p, name);
+  g.finish();
+  return locatedGenerate(entry, rectangle, p, name);
 }
 
-MeshData discFrom(const YamlMap& g, const std::string& name) {
+MeshData discFrom(const YamlMap& entry, const std::string& name) {
+  const SchemaMap g(entry, discSchema());
   auto p = discParams(g);
-  g.finish(kDiscKeys);
-  return locatedGenerate(g, disc, p, name);
+  g.finish();
+  return locatedGenerate(entry, disc, p, name);
 }
 
-MeshData sphereOctantFrom(const YamlMap& g, const std::string& name) {
+MeshData sphereOctantFrom(const YamlMap& entry, const std::string& name) {
+  const SchemaMap g(entry, sphereOctantSchema());
   SphereOctantParams p;
   p.radius = g.number("radius");
   p.divisions = int(g.integer("divisions"));
-  g.finish(kSphereOctantKeys);
-  return locatedGenerate(g, sphereOctant, p, name);
+  g.finish();
+  return locatedGenerate(entry, sphereOctant, p, name);
 }
 
-MeshData cableChainFrom(const YamlMap& g, const std::string& name) {
+MeshData cableChainFrom(const YamlMap& entry, const std::string& name) {
+  const SchemaMap g(entry, cableChainSchema());
   CableChainParams p;
-  p.points = readPoints(g, "points");
-  p.divisions = toInts(g.integers("divisions"));
-  g.finish(kCableChainKeys);
-  return locatedGenerate(g, cableChain, p, name);
+  p.points = readPoints(entry, "points");
+  p.divisions = toInts(entry.integers("divisions"));
+  g.finish();
+  return locatedGenerate(entry, cableChain, p, name);
 }
 
-MeshData stripFrom(const YamlMap& g, const std::string& name) {
+MeshData stripFrom(const YamlMap& entry, const std::string& name) {
+  const SchemaMap g(entry, stripSchema());
   StripParams p;
-  p.path = readPoints(g, "path");
-  p.divisions = toInts(g.integers("divisions"));
+  p.path = readPoints(entry, "path");
+  p.divisions = toInts(entry.integers("divisions"));
   p.width = g.vec3("width");
-  p.across = int(g.integer("across", 1));
-  p.pattern = g.choice("pattern", {"ruled", "alternating"}, "ruled");
-  g.finish(kStripKeys);
-  return locatedGenerate(g, strip, p, name);
+  p.across = int(g.integer("across"));
+  p.pattern = g.string("pattern");
+  g.finish();
+  return locatedGenerate(entry, strip, p, name);
 }
 
-// The keys of a pillow depend on its shape: those of the rectangle or of the disc generator.
-MeshData pillowFrom(const YamlMap& g, const std::string& name) {
+MeshData pillowFrom(const YamlMap& entry, const std::string& name) {
   PillowParams p;
-  p.shape = g.choice("shape", {"rectangle", "disc"});
+  p.shape = SchemaMap(entry, pillowSchema()).string("shape");
   if (p.shape == "rectangle") {
+    const SchemaMap g(entry, pillowRectangleSchema());
     p.rectangle = rectangleParams(g);
-    g.finish(kPillowRectangleKeys);
+    g.finish();
   } else {
+    const SchemaMap g(entry, pillowDiscSchema());
     p.disc = discParams(g);
-    g.finish(kPillowDiscKeys);
+    g.finish();
   }
-  return locatedGenerate(g, pillow, p, name);
+  return locatedGenerate(entry, pillow, p, name);
 }
 
 }  // namespace
@@ -123,12 +253,15 @@ const std::vector<GeneratorKind>& generatorKinds() {
   // Register a new generator here: a row, or for a generator in a file of its own `myShapeGenerator(),` (with
   // `GeneratorKind myShapeGenerator();` declared above this function).
   static const std::vector<GeneratorKind> kinds{
-      {"rectangle", kRectangleKeys, "flat rectangle, normal +z", rectangleFrom},
-      {"disc", kDiscKeys, "flat disc of hexagonal rings, normal +z", discFrom},
-      {"sphere_octant", kSphereOctantKeys, "one eighth of a sphere, normal outward", sphereOctantFrom},
-      {"cable_chain", kCableChainKeys, "cable lines along a polyline", cableChainFrom},
-      {"strip", kStripKeys, "strip swept from a polyline", stripFrom},
-      {"pillow", kPillowKeys, "two faces (rectangle or disc) joined at their rim", pillowFrom},
+      {"rectangle", rectangleSchema().names(), rectangleSchema().description, rectangleFrom,
+       &rectangleSchema()},
+      {"disc", discSchema().names(), discSchema().description, discFrom, &discSchema()},
+      {"sphere_octant", sphereOctantSchema().names(), sphereOctantSchema().description, sphereOctantFrom,
+       &sphereOctantSchema()},
+      {"cable_chain", cableChainSchema().names(), cableChainSchema().description, cableChainFrom,
+       &cableChainSchema()},
+      {"strip", stripSchema().names(), stripSchema().description, stripFrom, &stripSchema()},
+      {"pillow", pillowSchema().names(), pillowSchema().description, pillowFrom, &pillowSchema()},
       parafoilGenerator(),
   };
   return kinds;

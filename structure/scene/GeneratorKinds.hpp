@@ -10,6 +10,7 @@
 
 #include "structure/model/Error.hpp"
 #include "structure/model/MeshData.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
@@ -20,6 +21,9 @@ struct GeneratorKind {
   std::string description;        ///< one line, for docs and messages
   /// Reads the entry (calling g.finish) and builds the mesh `meshName`; errors are located at the entry.
   MeshData (*generate)(const YamlMap& g, const std::string& meshName) = nullptr;
+  /// The entry's declared keys (SceneSchema), when the generator has them (`parafoil`); `keys` are its names.
+  /// The other generators' keys are not in the schema yet.
+  const SchemaSection* schema = nullptr;
 };
 
 /// Every generator, in the order their names are listed in messages.

@@ -1,48 +1,47 @@
 #include "structure/scene/MaterialTypes.hpp"
 
-#include <cmath>
-
-#include "structure/scene/YamlAccess.hpp"
+#include "structure/model/MaterialKeys.hpp"
+#include "structure/scene/SceneSchema.hpp"
 
 namespace fsi::structure {
 
 namespace {
 
-int readMembrane(const YamlMap& m, const std::string& name, const std::vector<std::string>& validKeys,
-                 MaterialTable& table) {
+// Each reader reads through its type's schema section (model/MaterialKeys): the ranges and their messages are
+// the keys' entries, located at the key. Every positive quantity is under one rule (isPositiveNormal): a
+// subnormal thickness or density (1e-320) would make the lumped masses underflow to 0.
+int readMembrane(const YamlMap& entry, const std::string& name, MaterialTable& table) {
+  const SchemaMap m(entry, membraneMaterialKeys());
   MembraneMaterial mm;
   mm.name = name;
-  // Every positive quantity under one rule (isPositiveNormal): a subnormal thickness or density (1e-320)
-  // would make the lumped masses underflow to 0.
-  mm.young = m.positive("young");
+  mm.young = m.number("young");
   mm.poisson = m.number("poisson");
-  mm.thickness = m.positive("thickness");
-  mm.density = m.positive("density");
-  mm.wrinkling = m.boolean("wrinkling", true);
-  m.finish(validKeys);
-  if (!(mm.poisson >= 0 && mm.poisson < 0.5)) m.failAt("poisson", "must be in [0, 0.5)");
+  mm.thickness = m.number("thickness");
+  mm.density = m.number("density");
+  mm.wrinkling = m.boolean("wrinkling");
+  m.finish();
   table.membrane.push_back(mm);
   return int(table.membrane.size()) - 1;
 }
 
-int readCable(const YamlMap& m, const std::string& name, const std::vector<std::string>& validKeys,
-              MaterialTable& table) {
+int readCable(const YamlMap& entry, const std::string& name, MaterialTable& table) {
+  const SchemaMap m(entry, cableMaterialKeys());
   CableMaterial cm;
   cm.name = name;
-  cm.young = m.positive("young");
-  cm.area = m.positive("area");
-  cm.density = m.positive("density");
-  m.finish(validKeys);
+  cm.young = m.number("young");
+  cm.area = m.number("area");
+  cm.density = m.number("density");
+  m.finish();
   table.cable.push_back(cm);
   return int(table.cable.size()) - 1;
 }
 
-int readPointMass(const YamlMap& m, const std::string& name, const std::vector<std::string>& validKeys,
-                  MaterialTable& table) {
+int readPointMass(const YamlMap& entry, const std::string& name, MaterialTable& table) {
+  const SchemaMap m(entry, pointMassMaterialKeys());
   PointMassMaterial pm;
   pm.name = name;
-  pm.mass = m.positive("mass");  // not subnormal: 1/m would overflow to inf in the step loop
-  m.finish(validKeys);
+  pm.mass = m.number("mass");  // not subnormal: 1/m would overflow to inf in the step loop
+  m.finish();
   table.pointMass.push_back(pm);
   return int(table.pointMass.size()) - 1;
 }
@@ -52,9 +51,9 @@ int readPointMass(const YamlMap& m, const std::string& name, const std::vector<s
 const std::vector<MaterialType>& materialTypes() {
   // One line per material type.
   static const std::vector<MaterialType> types{
-      {"membrane", "membrane", {"young", "poisson", "thickness", "density", "wrinkling"}, readMembrane},
-      {"cable", "cable", {"young", "area", "density"}, readCable},
-      {"point_mass", "point_mass", {"mass"}, readPointMass},
+      {"membrane", "membrane", &membraneMaterialKeys(), readMembrane},
+      {"cable", "cable", &cableMaterialKeys(), readCable},
+      {"point_mass", "point_mass", &pointMassMaterialKeys(), readPointMass},
   };
   return types;
 }
@@ -66,12 +65,8 @@ MaterialTable readMaterials(const YamlMap& materials) {
   for (const auto& name : materials.keys()) {
     YamlMap m = materials.map(name);
     const std::string type = m.choice("type", names);
-    for (const MaterialType& t : materialTypes()) {
-      if (t.name != type) continue;
-      std::vector<std::string> valid{"type"};
-      valid.insert(valid.end(), t.keys.begin(), t.keys.end());
-      table.index[t.elementKind][name] = t.read(m, name, valid, table);
-    }
+    for (const MaterialType& t : materialTypes())
+      if (t.name == type) table.index[t.elementKind][name] = t.read(m, name, table);
   }
   return table;
 }

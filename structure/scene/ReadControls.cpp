@@ -9,47 +9,232 @@
 #include "structure/effects/Threads.hpp"
 #include "structure/integrate/FictitiousMass.hpp"
 #include "structure/scene/JoinNames.hpp"
+#include "structure/scene/SceneSchema.hpp"
 
 namespace fsi::structure {
+
+namespace {
+
+KeyBound incl(double v) {
+  return {v, true};
+}
+constexpr KeyBound kAboveZero{0, false};
+constexpr double kIntMax = std::numeric_limits<int>::max();
+
+}  // namespace
+
+const SchemaSection& solverSchema() {
+  using T = KeyType;
+  static const SchemaSection s{
+      "solver",
+      "explicit dynamics (the default) or dynamic relaxation (docs/DYNAMIC_RELAXATION.md)",
+      {{"type",
+        T::Choice,
+        "",
+        "explicit_dynamics",
+        "",
+        {},
+        {},
+        {"explicit_dynamics", "dynamic_relaxation"},
+        "the solver"},
+       {"threads",
+        T::Integer,
+        "",
+        "1",
+        "",
+        incl(1),
+        incl(1024),
+        {},
+        "threads of the force evaluation and node sweeps (OpenMP builds)"}}};
+  return s;
+}
+
+const SchemaSection& relaxationSchema() {
+  using T = KeyType;
+  static const SchemaSection s{
+      "solver (type: dynamic_relaxation)",
+      "dynamic relaxation to the static state (docs/DYNAMIC_RELAXATION.md)",
+      {solverSchema().keys[0],
+       solverSchema().keys[1],
+       {"damping",
+        T::Choice,
+        "",
+        "kinetic",
+        "",
+        {},
+        {},
+        {"kinetic", "viscous"},
+        "kinetic or viscous damping"},
+       {"mass",
+        T::Choice,
+        "",
+        toString(RelaxationSettings{}.mass),
+        "",
+        {},
+        {},
+        fictitiousMassRuleNames(),
+        "the fictitious mass rule"},
+       {"coefficient",
+        T::Choice,
+        "",
+        "underwood",
+        "",
+        {},
+        {},
+        {"underwood", "rezaiee_pajand"},
+        "the viscous damping coefficient's rule"},
+       {"lambda",
+        T::Number,
+        "-",
+        "",
+        "unset: the mass rule's",
+        kAboveZero,
+        {},
+        {},
+        "the fictitious mass factor"},
+       {"backstep",
+        T::Boolean,
+        "",
+        "true",
+        "",
+        {},
+        {},
+        {},
+        "kinetic damping: restart from the kinetic-energy peak"},
+       {"tolerance", T::Number, "-", "1e-3", "", kAboveZero, {}, {}, "the residual that counts as converged"},
+       {"max_iterations", T::Integer, "", "200000", "", incl(1), kAnyLong, {}, "iterations before giving up"},
+       {"increments", T::Integer, "", "1", "", incl(1), incl(kIntMax), {}, "load increments"},
+       {"load_time",
+        T::Number,
+        "s",
+        "0",
+        "",
+        {},
+        {},
+        {},
+        "the time at which the time functions of the loads are evaluated"},
+       {"auto_mass", T::Boolean, "", "true", "", {}, {}, {}, "rebuild the masses when the iteration stalls"},
+       {"update_masses", T::Boolean, "", "false", "", {}, {}, {}, "rebuild the masses every restart"}}};
+  return s;
+}
+
+const SchemaSection& timeSchema() {
+  using T = KeyType;
+  static const SchemaSection s{
+      "time",
+      "explicit dynamics' end and step control",
+      {{"end",
+        T::Number,
+        "s",
+        "",
+        "required (unless until_static, or coupled: the flow's)",
+        kAboveZero,
+        {},
+        {},
+        "end time"},
+       {"until_static",
+        T::Map,
+        "",
+        "",
+        "",
+        {},
+        {},
+        {},
+        "run until the kinetic energy settles instead of to `end` (keys below)"},
+       {"safety", T::Number, "-", "0.9", "", kAboveZero, incl(1), {}, "the step over the stable step"},
+       {"fixed_dt",
+        T::Number,
+        "s",
+        "0",
+        "",
+        incl(0),
+        {},
+        {},
+        "a fixed step; 0: the automatic step (a positive step at least 2.2e-308)"},
+       {"max_dt", T::Number, "s", "1e300", "", kAboveZero, {}, {}, "largest automatic step"},
+       {"monitor_every", T::Integer, "", "100", "", incl(1), kAnyLong, {}, "steps between energy checks"},
+       {"energy_tolerance",
+        T::Number,
+        "-",
+        "0.05",
+        "",
+        kAboveZero,
+        {},
+        {},
+        "energy created in the elements over the work done that stops the run as unstable"},
+       {"mass_scaling_min_dt",
+        T::Number,
+        "s",
+        "0",
+        "",
+        incl(0),
+        {},
+        {},
+        "scale the mass of elements whose step is below this; 0: no mass scaling"}}};
+  return s;
+}
+
+const SchemaSection& untilStaticSchema() {
+  using T = KeyType;
+  static const SchemaSection s{
+      "time.until_static",
+      "stop when the kinetic energy over the strain energy falls below a tolerance",
+      {{"tolerance", T::Number, "-", "1e-8", "", kAboveZero, {}, {}, "KE/U that counts as static"},
+       {"max_time", T::Number, "s", "", "required", kAboveZero, {}, {}, "end time if it never settles"}}};
+  return s;
+}
+
+const SchemaSection& outputSchema() {
+  using T = KeyType;
+  static const SchemaSection s{
+      "output",
+      "frames of results.h5 / results.xdmf",
+      {{"interval",
+        T::Number,
+        "s",
+        "0",
+        "",
+        incl(0),
+        {},
+        {},
+        "time between frames; 0: every step (a positive interval at least 2.2e-308)"},
+       {"fields", T::Strings, "", "", "all", {}, {}, allOutputFields(), "the fields written"}}};
+  return s;
+}
 
 SolverControl readSolver(const YamlMap& top) {
   SolverControl solver;
   if (top.has("solver")) {
-    YamlMap sv = top.map("solver");
-    const std::string type =
-        sv.choice("type", {"explicit_dynamics", "dynamic_relaxation"}, "explicit_dynamics");
-    solver.threads = int(sv.integer("threads", 1, {1, 1024}));
+    YamlMap svMap = top.map("solver");
+    const SchemaMap sv(svMap, solverSchema());
+    const std::string type = sv.string("type");
+    solver.threads = int(sv.integer("threads"));
     if (solver.threads > 1 && !threadsAvailable())
-      sv.failAt("threads",
-                "this build has no OpenMP (built with FSI_OPENMP=OFF or without compiler support): "
-                "only 1 is possible");
+      svMap.failAt("threads",
+                   "this build has no OpenMP (built with FSI_OPENMP=OFF or without compiler support): "
+                   "only 1 is possible");
     if (type == "dynamic_relaxation") {
+      const SchemaMap dr(svMap, relaxationSchema());
       SolverControl& sc = solver;
       RelaxationSettings& rs = sc.relaxation;
       sc.type = SolverControl::Type::DynamicRelaxation;
-      const std::string damping = sv.choice("damping", {"kinetic", "viscous"}, "kinetic");
-      rs.damping =
-          damping == "kinetic" ? RelaxationSettings::Damping::Kinetic : RelaxationSettings::Damping::Viscous;
-      const std::string mass = sv.choice("mass", fictitiousMassRuleNames(), toString(rs.mass));
-      rs.mass = fictitiousMassRuleFromName(mass);
-      const std::string coef = sv.choice("coefficient", {"underwood", "rezaiee_pajand"}, "underwood");
-      rs.coefficient = coef == "underwood" ? RelaxationSettings::Coefficient::Underwood
-                                           : RelaxationSettings::Coefficient::RezaiePajand;
+      rs.damping = dr.string("damping") == "kinetic" ? RelaxationSettings::Damping::Kinetic
+                                                     : RelaxationSettings::Damping::Viscous;
+      rs.mass = fictitiousMassRuleFromName(dr.string("mass"));
+      rs.coefficient = dr.string("coefficient") == "underwood"
+                           ? RelaxationSettings::Coefficient::Underwood
+                           : RelaxationSettings::Coefficient::RezaiePajand;
       // Unset (0 inside RelaxationSettings) takes the rule's default; `lambda: 0` is an error, not "unset".
-      if (sv.has("lambda")) rs.lambda = sv.positive("lambda");
-      rs.backstep = sv.boolean("backstep", true);
-      rs.tolerance = sv.number("tolerance", 1e-3);
-      if (!isPositiveNormal(rs.tolerance)) sv.failAt("tolerance", kPositiveRule);
-      rs.maxIterations = sv.integer("max_iterations", 200000, {1, std::numeric_limits<long>::max()});
-      if (rs.maxIterations < 1) sv.failAt("max_iterations", "must be >= 1");
-      rs.increments = int(sv.integer("increments", 1, {1, std::numeric_limits<int>::max()}));
-      if (rs.increments < 1) sv.failAt("increments", "must be >= 1");
-      rs.loadTime = sv.number("load_time", 0.0);
-      rs.autoMass = sv.boolean("auto_mass", true);
-      rs.updateMasses = sv.boolean("update_masses", false);
+      if (dr.has("lambda")) rs.lambda = dr.number("lambda");
+      rs.backstep = dr.boolean("backstep");
+      rs.tolerance = dr.number("tolerance");
+      rs.maxIterations = dr.integer("max_iterations");
+      rs.increments = int(dr.integer("increments"));
+      rs.loadTime = dr.number("load_time");
+      rs.autoMass = dr.boolean("auto_mass");
+      rs.updateMasses = dr.boolean("update_masses");
       rs.threads = solver.threads;
-      sv.finish({"type", "threads", "damping", "mass", "coefficient", "lambda", "backstep", "tolerance",
-                 "max_iterations", "increments", "load_time", "auto_mass", "update_masses"});
+      dr.finish();
       if (rs.damping == RelaxationSettings::Damping::Kinetic)
         sc.method = rs.mass == FictitiousMassRule::StressBound   ? "KDR1"
                     : rs.mass == FictitiousMassRule::Gerschgorin ? "KDR"
@@ -58,7 +243,7 @@ SolverControl readSolver(const YamlMap& top) {
         sc.method = std::string(rs.mass == FictitiousMassRule::RezaiePajand ? "m" : "o") +
                     (rs.coefficient == RelaxationSettings::Coefficient::RezaiePajand ? "dDR" : "DR");
     } else {
-      sv.finish({"type", "threads"});
+      sv.finish();
     }
   }
   return solver;
@@ -72,38 +257,32 @@ TimeControl readTime(const YamlMap& top, bool relaxation) {
     // The structural side of a coupled run: the flow solver sets the end; the step is automatic.
     time.endTime = std::numeric_limits<double>::infinity();
   } else {
-    YamlMap t = top.map("time");
+    YamlMap tMap = top.map("time");
+    const SchemaMap t(tMap, timeSchema());
     TimeControl& tc = time;
     if (t.has("until_static")) {
-      YamlMap s = t.map("until_static");
+      YamlMap sMap = tMap.map("until_static");
+      const SchemaMap s(sMap, untilStaticSchema());
       tc.untilStatic = true;
-      tc.staticTolerance = s.number("tolerance", 1e-8);
+      tc.staticTolerance = s.number("tolerance");
       tc.endTime = s.number("max_time");
-      s.finish({"tolerance", "max_time"});
-      if (!isPositiveNormal(tc.staticTolerance)) s.failAt("tolerance", kPositiveRule);
-      if (t.has("end")) t.failAt("end", "give either 'end' or 'until_static', not both");
+      s.finish();
+      if (t.has("end")) tMap.failAt("end", "give either 'end' or 'until_static', not both");
     } else if (top.has("coupling") && !t.has("end")) {
       tc.endTime = std::numeric_limits<double>::infinity();  // set by the flow solver
     } else {
+      if (!t.has("end")) tMap.required("end");  // the located "missing required key"
       tc.endTime = t.number("end");
     }
-    if (!(tc.endTime > 0) || (std::isfinite(tc.endTime) && !isPositiveNormal(tc.endTime)))
-      t.fail("the end time (or until_static.max_time) must be > 0 and at least 2.2e-308");
-    tc.integrator.safety = t.number("safety", 0.9);
-    if (!(tc.integrator.safety > 0 && tc.integrator.safety <= 1.0)) t.failAt("safety", "must be in (0, 1]");
-    tc.integrator.fixedDt = t.number("fixed_dt", 0.0);
+    tc.integrator.safety = t.number("safety");
+    tc.integrator.fixedDt = t.number("fixed_dt");
     if (tc.integrator.fixedDt != 0 && !isPositiveNormal(tc.integrator.fixedDt))
-      t.failAt("fixed_dt", std::string(kPositiveRule) + " (or absent for the automatic step)");
-    tc.integrator.maxDt = t.number("max_dt", 1e300);
-    if (!isPositiveNormal(tc.integrator.maxDt)) t.failAt("max_dt", kPositiveRule);
-    tc.monitorEvery = t.integer("monitor_every", 100, {1, std::numeric_limits<long>::max()});
-    if (tc.monitorEvery < 1) t.failAt("monitor_every", "must be >= 1");
-    tc.energyTolerance = t.number("energy_tolerance", 0.05);
-    if (!isPositiveNormal(tc.energyTolerance)) t.failAt("energy_tolerance", kPositiveRule);
-    tc.massScalingMinDt = t.number("mass_scaling_min_dt", 0.0);
-    if (tc.massScalingMinDt < 0) t.failAt("mass_scaling_min_dt", "must be >= 0");
-    t.finish({"end", "until_static", "safety", "fixed_dt", "max_dt", "monitor_every", "energy_tolerance",
-              "mass_scaling_min_dt"});
+      tMap.failAt("fixed_dt", std::string(kPositiveRule) + " (or absent for the automatic step)");
+    tc.integrator.maxDt = t.number("max_dt");
+    tc.monitorEvery = t.integer("monitor_every");
+    tc.energyTolerance = t.number("energy_tolerance");
+    tc.massScalingMinDt = t.number("mass_scaling_min_dt");
+    t.finish();
   }
   return time;
 }
@@ -111,26 +290,27 @@ TimeControl readTime(const YamlMap& top, bool relaxation) {
 OutputControl readOutput(const YamlMap& top) {
   OutputControl output;
   if (top.has("output")) {
-    YamlMap o = top.map("output");
-    output.interval = o.number("interval", 0.0);
-    if (output.interval < 0) o.failAt("interval", "must be >= 0");
+    YamlMap oMap = top.map("output");
+    const SchemaMap o(oMap, outputSchema());
+    output.interval = o.number("interval");
     if (output.interval > 0 && !std::isnormal(output.interval))
-      o.failAt("interval", "must be 0 (every step) or at least 2.2e-308 (a subnormal interval is no time)");
+      oMap.failAt("interval",
+                  "must be 0 (every step) or at least 2.2e-308 (a subnormal interval is no time)");
     if (o.has("fields")) {
-      for (const auto& f : o.strings("fields")) {
-        const auto& all = allOutputFields();
+      const std::vector<std::string>& all = o.section().key("fields").choices;
+      for (const auto& f : oMap.strings("fields")) {
         if (std::find(all.begin(), all.end(), f) == all.end()) {
           const std::string near = closestMatch(f, all);
-          o.failAt("fields", fmt::format("unknown field '{}'{}; valid: {}", f,
-                                         near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                                         joinNames(all)));
+          oMap.failAt("fields", fmt::format("unknown field '{}'{}; valid: {}", f,
+                                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                            joinNames(all)));
         }
         output.fields.insert(f);
       }
     } else {
       output.fields.insert(allOutputFields().begin(), allOutputFields().end());
     }
-    o.finish({"interval", "fields"});
+    o.finish();
   }
 
   if (output.fields.empty() && !top.has("output"))

@@ -2,18 +2,46 @@
 
 #include <algorithm>
 
+#include "structure/scene/SceneSchema.hpp"
+
 namespace fsi::structure {
 
 // The `coupling:` section: the triangles that receive the flow's load and the rule for the load within a
 // window. The scene builds no effect for it: the coupling participant owns the load and adds the
 // InterfacePressure effect that reads it.
+const SchemaSection& couplingSchema() {
+  static const SchemaSection s{
+      "coupling",
+      "the interface a flow solver loads (docs/COUPLING.md)",
+      {{"interface",
+        KeyType::Selector,
+        "",
+        "",
+        "required",
+        {},
+        {},
+        {},
+        "the triangles the flow's load acts on"},
+       {"load_in_window",
+        KeyType::Choice,
+        "",
+        "mean",
+        "",
+        {},
+        {},
+        {"mean", "end", "linear"},
+        "the load within a coupling window: the window's mean, its end value, or linear in time"}}};
+  return s;
+}
+
 void readCoupling(const YamlMap& top, const SetResolver& sets, Scene& scene) {
   const Model& model = *scene.model;
   if (!top.has("coupling")) return;
-  YamlMap c = top.map("coupling");
-  const auto tris = sets.triangles(c.required("interface"), c.childPath("interface"));
-  const std::string rule = c.choice("load_in_window", {"mean", "end", "linear"}, "mean");
-  c.finish({"interface", "load_in_window"});
+  YamlMap cMap = top.map("coupling");
+  const SchemaMap c(cMap, couplingSchema());
+  const auto tris = sets.triangles(cMap.required("interface"), cMap.childPath("interface"));
+  const std::string rule = c.string("load_in_window");
+  c.finish();
   Scene::CouplingInterface ci;
   ci.loadInWindow = rule == "mean"  ? LoadInterpolation::ConstantMean
                     : rule == "end" ? LoadInterpolation::ConstantEnd

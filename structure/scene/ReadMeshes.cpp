@@ -4,6 +4,7 @@
 #include "structure/elements/ElementKind.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/MeshSources.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/SceneSpec.hpp"
 
 namespace fsi::structure {
@@ -11,10 +12,8 @@ namespace fsi::structure {
 std::vector<MeshSpec> readMeshes(const YamlMap& top, const MaterialTable& materials,
                                  const std::filesystem::path& dir) {
   // The valid keys of a mesh entry: where the mesh comes from, then every element kind's own (its material
-  // references), in registry order.
-  std::vector<std::string> validKeys{"file", "generator"};
-  for (const ElementKind* kind : elementKinds())
-    for (const std::string& key : kind->meshKeys()) validKeys.push_back(key);
+  // references), in registry order (SceneSections.cpp).
+  const std::vector<std::string> validKeys = meshEntrySchema().names();
   std::vector<MeshSpec> out;
   YamlMap meshes = top.map("meshes");
   if (meshes.keys().empty()) meshes.fail("at least one mesh is needed");
@@ -45,12 +44,11 @@ Model buildSceneModel(std::vector<MeshSpec> meshes, const MaterialTable& materia
   }
   try {
     return buildModel(std::move(inputs), materials);
+  } catch (const MeshInputError& e) {
+    // About one mesh: at its entry (its file, or the scene's generator entry).
+    throw InputError(meshOrigins.at(std::size_t(e.mesh())).second + ": " + e.what());
   } catch (const InputError& e) {
-    const std::string what = e.what();
-    std::string where = file;
-    for (const auto& [name, origin] : meshOrigins)
-      if (what.find("mesh '" + name + "'") != std::string::npos) where = origin;
-    throw InputError(where + ": " + what);
+    throw InputError(file + ": " + e.what());  // about the model as a whole (a material)
   }
 }
 

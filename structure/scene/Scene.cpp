@@ -7,14 +7,15 @@
 
 #include "structure/elements/ElementKind.hpp"
 #include "structure/model/Error.hpp"
-#include "structure/probes/ProbeKinds.hpp"
 #include "structure/scene/BuildConstraints.hpp"
 #include "structure/scene/ReadControls.hpp"
 #include "structure/scene/ReadCoupling.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/SceneSpec.hpp"
 #include "structure/scene/SetResolver.hpp"
 #include "structure/scene/YamlAccess.hpp"
 #include "structure/scene/effects/EffectKinds.hpp"
+#include "structure/scene/probes/ReadProbes.hpp"
 
 namespace fsi::structure {
 
@@ -27,9 +28,7 @@ std::vector<const Effect*> Scene::effectList() const {
 namespace {
 
 const std::vector<std::string>& topLevelKeys() {
-  static const std::vector<std::string> keys{"title",       "materials", "meshes",   "sets",
-                                             "constraints", "effects",   "coupling", "solver",
-                                             "time",        "output",    "probes"};
+  static const std::vector<std::string> keys = topLevelSchema().names();
   return keys;
 }
 

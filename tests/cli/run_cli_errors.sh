@@ -199,7 +199,7 @@ wing() {  # wing FILE EXTRA: a small parafoil generator entry plus EXTRA keys
     "constraints:" "  - {nodes: wing/confluence, fix: all}" "time: {end: 1.0e-4}" > "$1"
 }
 wing tip0.yaml "tip_chord: 0"
-expect 2 "tip0.yaml:6:16: meshes.wing.generator: parafoil generator: parameter 'tip_chord' is 0; valid: (0, 3]" -- \
+expect 2 "tip0.yaml:6:112: meshes.wing.generator.tip_chord: must be > 0 and at least 2.2e-308" -- \
   "$fsi" run tip0.yaml --out o
 wing bulge.yaml "bulge: 0.1"
 expect 2 "parameter 'bulge' is 0.1 but has no effect with span_divisions 1" -- "$fsi" run bulge.yaml --out o

@@ -315,7 +315,7 @@ TEST(FabricBending, SceneEntryIsCheckedAtItsKey) {
       sceneError(fsi::test::drumScene(time + "effects: {bending: {triangles: sheet, rigidity: -1}}\n"));
   EXPECT_NE(e.find("case.yaml:10:"), std::string::npos) << e;
   EXPECT_NE(e.find("effects.bending.rigidity"), std::string::npos) << e;
-  EXPECT_NE(e.find("valid: > 0"), std::string::npos) << e;
+  EXPECT_NE(e.find("must be > 0 and at least 2.2e-308"), std::string::npos) << e;
   e = sceneError(fsi::test::drumScene(time + "effects: {bending: {triangles: sheet}}\n"));
   EXPECT_NE(e.find("rigidity"), std::string::npos) << e;
 }

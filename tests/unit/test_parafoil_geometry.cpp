@@ -600,14 +600,19 @@ TEST(ParafoilScene, UnsetIsNotZeroAndIneffectiveOrAbsurdValuesAreRefused) {
     const char *from, *to, *expected;
   };
   const Case cases[] = {
-      // tip_chord 0 built the untapered wing (0 was "unset").
-      {"riser_length: 0.4", "tip_chord: 0", "parameter 'tip_chord' is 0; valid: (0, 3]"},
+      // tip_chord 0 built the untapered wing (0 was "unset"). Ranges of the schema (ParafoilScene.cpp's
+      // parafoilSchema) are refused at the key; those that depend on other keys by the geometry's checks.
+      {"riser_length: 0.4", "tip_chord: 0", "meshes.wing.generator.tip_chord: must be > 0"},
+      {"riser_length: 0.4", "tip_chord: 4", "parameter 'tip_chord' is 4; valid: (0, 3]"},
       // riser_length 0 meant "no riser"; 1e308 made a node at -1e308.
-      {"riser_length: 0.4", "riser_length: 0", "parameter 'riser_length' is 0; valid: (0, 30]"},
+      {"riser_length: 0.4", "riser_length: 0", "meshes.wing.generator.riser_length: must be > 0"},
       {"riser_length: 0.4", "riser_length: 1e308", "parameter 'riser_length' is 1e+308; valid: (0, 30]"},
-      {"riser_length: 0.4", "line_length: 1.0e300", "parameter 'line_length' is 1e+300; valid: (0, 10]"},
-      {"cells: 4", "cells: 4, span: 1.0e300", "parameter 'span' is 1e+300; valid: (0, 1000]"},
-      {"cells: 4", "cells: 4, span: 1.0e-320", "parameter 'span'"},
+      {"riser_length: 0.4", "line_length: 1.0e300",
+       "meshes.wing.generator.line_length: is 1.0e300; valid: (0, 10]"},
+      {"cells: 4", "cells: 4, span: 1.0e300", "meshes.wing.generator.span: is 1.0e300; valid: (0, 1000]"},
+      {"cells: 4", "cells: 4, span: 1.0e-320",
+       "meshes.wing.generator.span: is 1.0e-320; valid: (0, 1000] (and "
+       "at least 2.2e-308"},
       {"cells: 4", "cells: 4, root_chord: 50", "parameter 'root_chord' is 50; valid: (0, 3]"},
       // bulge with span_divisions 1 gave the same mesh as without.
       {"riser_length: 0.4", "bulge: 0.1", "parameter 'bulge' is 0.1 but has no effect with span_divisions 1"},

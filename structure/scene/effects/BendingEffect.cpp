@@ -3,24 +3,36 @@
 #include <fmt/format.h>
 
 #include "structure/effects/FabricBending.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/effects/EffectKinds.hpp"
 
 namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"triangles", "rigidity"};
+const SchemaSection& schema() {
+  static const SchemaSection s{
+      "effects.bending",
+      "flexural rigidity D of a fabric: hinges on the interior edges of triangles (an entry or a list of "
+      "them)",
+      {{"triangles", KeyType::Selector, "", "", "required", {}, {}, {}, "the triangles"},
+       {"rigidity",
+        KeyType::Number,
+        "N·m",
+        "",
+        "required",
+        KeyBound{0, false},
+        {},
+        {},
+        "D: a woven parachute fabric about 1e-6 to 1e-4; an isotropic sheet E t³ / 12(1 − ν²)"}}};
+  return s;
+}
 
 void build(const YamlMap& b, EffectContext& ctx) {
+  const SchemaMap m(b, schema());
   const auto tris = ctx.sets.triangles(b.required("triangles"), b.childPath("triangles"));
-  const double D = b.number("rigidity");
-  if (!isPositiveNormal(D))
-    b.failAt("rigidity",
-             fmt::format(
-                 "is {}; valid: > 0, at least 2.2e-308 [N·m] (a woven parachute fabric: about 1e-6 to 1e-4; "
-                 "an isotropic sheet: E t³ / 12(1 − ν²))",
-                 D));
-  b.finish(kKeys);
+  const double D = m.number("rigidity");
+  m.finish();
   std::vector<int> conn;
   for (int e : tris)
     for (int k = 0; k < 3; ++k) conn.push_back(ctx.model.membranes.conn[3 * e + k]);
@@ -36,11 +48,12 @@ void build(const YamlMap& b, EffectContext& ctx) {
 
 EffectKind bendingEffect() {
   return {"bending",
-          kKeys,
+          schema().names(),
           "flexural rigidity D of a fabric: hinges ½ k (θ − θ0)² on the interior edges of triangles",
           true,
           "",
-          build};
+          build,
+          &schema()};
 }
 
 }  // namespace fsi::structure

@@ -15,6 +15,7 @@
 #include "structure/elements/ElementKind.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/model/Model.hpp"
+#include "structure/model/SchemaKey.hpp"
 #include "structure/scene/SetResolver.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
@@ -41,6 +42,9 @@ struct EffectKind {
   std::string relaxationConflict;  ///< non-empty: refused in a dynamic-relaxation scene, with this reason
   /// Reads one entry (calling entry.finish(keys)) and adds what it makes to the context.
   void (*build)(const YamlMap& entry, EffectContext& ctx) = nullptr;
+  /// The entry's declared keys (SceneSchema), when the kind has them; `keys` are then its names. The
+  /// coupling library's `pressure_field` and the `chordwise_pressure` table are not in the schema yet.
+  const SchemaSection* schema = nullptr;
 };
 
 /// Adds a pressure per triangle (values along the normal, times fn(t)) as a follower load, or as a dead load

@@ -47,6 +47,25 @@ int readPointMass(const YamlMap& m, const std::string& name, const std::vector<s
   return int(table.pointMass.size()) - 1;
 }
 
+// A material of a kind without a list of its own in the table (MaterialTable::other): every key a positive
+// number, the kind's build checks and uses them.
+int readKindMaterial(const YamlMap& m, const std::string& name, const std::vector<std::string>& validKeys,
+                     MaterialTable& table, const std::string& kind) {
+  KindMaterial km;
+  km.name = name;
+  for (const std::string& key : validKeys)
+    if (key != "type") km.values[key] = m.positive(key);
+  m.finish(validKeys);
+  auto& list = table.other[kind];
+  list.push_back(km);
+  return int(list.size()) - 1;
+}
+
+int readBar(const YamlMap& m, const std::string& name, const std::vector<std::string>& validKeys,
+            MaterialTable& table) {
+  return readKindMaterial(m, name, validKeys, table, "bar");
+}
+
 }  // namespace
 
 const std::vector<MaterialType>& materialTypes() {
@@ -55,6 +74,7 @@ const std::vector<MaterialType>& materialTypes() {
       {"membrane", "membrane", {"young", "poisson", "thickness", "density", "wrinkling"}, readMembrane},
       {"cable", "cable", {"young", "area", "density"}, readCable},
       {"point_mass", "point_mass", {"mass"}, readPointMass},
+      {"bar", "bar", {"young", "area", "density"}, readBar},
   };
   return types;
 }

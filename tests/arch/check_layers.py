@@ -36,22 +36,10 @@ STRUCTURE_LAYERS = [
 
 # Known violations, (including file, included path) -> reason; each one is issue 36 item 2: to be removed.
 # The check fails on any violation not listed here, and on an entry that no longer matches an include.
-_KIND_READS_YAML = ("an element kind reads its own scene keys (ElementKind::readMeshKeys/checkMeshInput take a "
-                    "YamlMap; material references through scene/ReadMaterials); to go when what a kind computes "
-                    "is split from how a scene spells it (a scene-level reader per kind): "
-                    "issue 36 item 2: to be removed")
 _PROBE_READS_YAML = ("a probe kind parses its scene entry (YamlMap, SetResolver) and evaluates on a Scene "
                      "(ProbeState); to go with the same split as the element kinds': "
                      "issue 36 item 2: to be removed")
 ALLOWED = {
-    ("structure/elements/CableElement.cpp", "structure/scene/ReadMaterials.hpp"): _KIND_READS_YAML,
-    ("structure/elements/CableElement.cpp", "structure/scene/YamlAccess.hpp"): _KIND_READS_YAML,
-    ("structure/elements/MembraneElement.cpp", "structure/scene/ReadMaterials.hpp"): _KIND_READS_YAML,
-    ("structure/elements/MembraneElement.cpp", "structure/scene/YamlAccess.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/JoinNames.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/NearestName.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/ReadMaterials.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/YamlAccess.hpp"): _KIND_READS_YAML,
     ("structure/probes/ProbeKinds.hpp", "structure/scene/Scene.hpp"): _PROBE_READS_YAML,
     ("structure/probes/ProbeKinds.hpp", "structure/scene/SetResolver.hpp"): _PROBE_READS_YAML,
     ("structure/probes/ProbeKinds.hpp", "structure/scene/YamlAccess.hpp"): _PROBE_READS_YAML,

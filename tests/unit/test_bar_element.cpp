@@ -272,3 +272,45 @@ TEST(Bar, FieldsInTheResultsAndTheSummary) {
   EXPECT_EQ(stats["element_kinds"]["bar"]["count"].get<int>(), 4);
   EXPECT_NEAR(stats["element_kinds"]["bar"]["max_force"].get<double>(), kF, 1e-6 * kF);
 }
+
+// One mesh file, two kinds on its lines: `bars: [diagonal]` claims the diagonal, `cables: [top]` keeps the
+// top line a cable. The bracket of cases/structure/bar-truss then carries the tip load with the cable in
+// tension (N = P) and the bar in compression (N = -sqrt(2) P); both kinds appear in the results and the
+// summary, and the claimed group's nodes still select as a node set.
+TEST(Bar, ClaimsItsLineGroupsBesideTheCables) {
+  const std::string msh = std::string(FSI_SOURCE_DIR) + "/cases/structure/bar-truss/truss.msh";
+  const std::string yaml = R"(materials:
+  steel: {type: bar, young: 2.0e11, area: 1.0e-4, density: 7850}
+  rope: {type: cable, young: 2.0e11, area: 1.0e-4, density: 7850}
+meshes:
+  truss:
+    file: )" + msh + R"(
+    bars: [diagonal]
+    bar_material: steel
+    cables: [top]
+    cable_material: rope
+constraints:
+  - {nodes: truss/support, fix: all}
+  - {nodes: truss/tip, fix: y}
+effects:
+  nodal_forces: {nodes: truss/tip, force: [0, 0, -10000]}
+solver: {type: dynamic_relaxation, tolerance: 1.0e-10}
+probes:
+  diagonal_z: {type: position, nodes: truss/diagonal, component: z, reduce: min}
+)";
+  Scene s = loadSceneFromString(yaml, "mixed.yaml");
+  ASSERT_EQ(barsOf(*s.model).count, 1);
+  ASSERT_EQ(s.model->cables.count, 1);
+  const auto dir = fsi::test::outDir("mixed");
+  const RunResult r = relax(s, dir);
+  ASSERT_EQ(r.reason, StopReason::Static) << r.diagnosis;
+  const nlohmann::json& kinds = r.summary["stats"]["element_kinds"];
+  EXPECT_NEAR(kinds["cable"]["max_force"].get<double>(), 1e4, 2e-3 * 1e4);
+  EXPECT_NEAR(kinds["bar"]["min_force"].get<double>(), -std::sqrt(2.0) * 1e4, 2e-3 * 1e4);
+  EXPECT_NEAR(r.probes.at("diagonal_z"), -1.0, 1e-9);  // the support B, a node of the claimed group
+  std::ifstream x(dir / "results.xdmf");
+  std::stringstream text;
+  text << x.rdbuf();
+  EXPECT_NE(text.str().find("<Grid Name=\"cables\""), std::string::npos);
+  EXPECT_NE(text.str().find("<Grid Name=\"bars\""), std::string::npos);
+}

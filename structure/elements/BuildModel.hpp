@@ -9,10 +9,10 @@
 
 namespace fsi::structure {
 
-/// Builds a Model: merges meshes, renumbers, precomputes reference geometry, lets every registered element
-/// kind build its own block (ElementKind::build, in registry order), sums the lumped masses, and rejects
-/// degenerate input (zero-area triangles, zero-length cables, repeated nodes in an element, massless nodes)
-/// with an InputError naming the element or node.
+/// Builds a Model: merges the meshes' nodes and renumbers them, lets every registered element kind build its
+/// own block from its cells (ElementKind::build, in registry order: reference geometry, constants, and the
+/// rejection of degenerate input — zero-area triangles, zero-length lines, repeated nodes in an element —
+/// with an InputError naming the element), sums the lumped masses and rejects a massless node.
 Model buildModel(std::vector<MeshInput> meshes, const MaterialTable& materials);
 /// The same for membranes and cables only.
 Model buildModel(std::vector<MeshInput> meshes, std::vector<MembraneMaterial> membraneMaterials,

@@ -5,14 +5,102 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <set>
 
 #include "structure/elements/CableForces.hpp"
-#include "structure/scene/ReadMaterials.hpp"
-#include "structure/scene/YamlAccess.hpp"
+#include "structure/model/Error.hpp"
+#include "structure/model/MaterialKeys.hpp"
+#include "structure/model/PositiveValue.hpp"
 
 namespace fsi::structure {
+
+void CableKind::build(const std::vector<MeshInput>& inputs, const MaterialTable& materials,
+                      Model& model) const {
+  for (const auto& m : materials.cable) checkMaterial(m);  // the key's range and message (model/MaterialKeys)
+  model.cableMaterials = materials.cable;
+  for (std::size_t m = 0; m < inputs.size(); ++m)
+    if (!inputs[m].mesh.lines.empty() && inputs[m].cableMaterial < 0)
+      throw MeshInputError(int(m), fmt::format("mesh '{}' has lines but no cable material", inputs[m].mesh.name));
+  const Nodes& N = model.nodes;
+  // Sorted by material then by first node.
+  struct LineRef {
+    int mesh, local, material, minNode;
+  };
+  std::vector<LineRef> lines;
+  for (std::size_t m = 0; m < inputs.size(); ++m) {
+    const MeshData& md = inputs[m].mesh;
+    const auto& nm = model.meshes[m].node;
+    for (std::size_t e = 0; e < md.lines.size(); ++e) {
+      const auto& l = md.lines[e];
+      for (int k = 0; k < 2; ++k)
+        if (l[k] < 0 || l[k] >= int(md.points.size()))
+          throw MeshInputError(int(m), fmt::format("mesh '{}': line {} refers to node index {} out of range", md.name,
+                                       e < md.lineTags.size() ? md.lineTags[e] : long(e + 1), l[k]));
+      lines.push_back({int(m), int(e), inputs[m].cableMaterial, std::min(nm[l[0]], nm[l[1]])});
+    }
+  }
+  std::stable_sort(lines.begin(), lines.end(), [](const LineRef& a, const LineRef& b) {
+    return a.material != b.material ? a.material < b.material : a.minNode < b.minNode;
+  });
+
+  Cables& C = model.cables;
+  C.count = int(lines.size());
+  C.conn.resize(2 * C.count);
+  C.restLength.resize(C.count);
+  C.invWaveSpeed.resize(C.count);
+  C.tag.resize(C.count);
+  C.mesh.resize(C.count);
+  for (std::size_t m = 0; m < inputs.size(); ++m)
+    model.meshes[m].line.assign(inputs[m].mesh.lines.size(), -1);
+  for (int e = 0; e < C.count; ++e) {
+    const LineRef& r = lines[e];
+    const MeshData& md = inputs[r.mesh].mesh;
+    model.meshes[r.mesh].line[r.local] = e;
+    C.tag[e] = r.local < int(md.lineTags.size()) ? md.lineTags[r.local] : long(r.local + 1);
+    C.mesh[e] = r.mesh;
+    const int a = C.conn[2 * e] = model.meshes[r.mesh].node[md.lines[r.local][0]];
+    const int b = C.conn[2 * e + 1] = model.meshes[r.mesh].node[md.lines[r.local][1]];
+    double L = 0;
+    for (int k = 0; k < 3; ++k) L += std::pow(N.X[3 * b + k] - N.X[3 * a + k], 2);
+    L = std::sqrt(L);
+    if (a == b || !(L > 0))
+      throw MeshInputError(
+          r.mesh, fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e), N.tag[a], N.tag[b]));
+    const CableMaterial& mat = model.cableMaterials[r.material];
+    if (std::size_t(r.local) < md.lineRestLength.size() && md.lineRestLength[std::size_t(r.local)] != 0.0) {
+      // A line rigged longer than the distance of its ends: slack (no tension) until stretched to it.
+      const double L0 = md.lineRestLength[std::size_t(r.local)];
+      if (!(std::isfinite(L0) && L0 > 0))
+        throw MeshInputError(
+            r.mesh, fmt::format("{} has rest length {} (must be positive and finite)", model.describeCable(e), L0));
+      L = L0;
+    }
+    C.restLength[e] = L;
+    C.invWaveSpeed[e] = std::sqrt(mat.density / mat.young);
+    if (C.blocks.empty() || C.blocks.back().material != r.material) {
+      CableBlock blk;
+      blk.begin = e;
+      blk.material = r.material;
+      blk.young = mat.young;
+      blk.area = mat.area;
+      blk.density = mat.density;
+      blk.axialStiffness = mat.young * mat.area;
+      C.blocks.push_back(blk);
+    }
+    C.blocks.back().end = e + 1;
+  }
+}
+
+std::optional<CellSet> CableKind::outputCells(const Model& model) const {
+  return CellSet{"cables", "lines", "Line", "Polyline", 2, model.cables.conn};
+}
+
+std::vector<std::pair<std::string, double>> CableKind::report(const Model& model, const double* x) const {
+  if (model.cables.count == 0) return {};
+  std::vector<double> tension;
+  cableTensions(model.cables, x, tension);
+  return {{"max_force", *std::max_element(tension.begin(), tension.end())}};
+}
 
 std::unique_ptr<Effect> CableKind::makeForces(const Model& model, const ElementDamping& damping) const {
   return std::make_unique<CableForces>(model.cables, damping);
@@ -97,123 +185,6 @@ void CableKind::addFields(const Model& model, const double* x, const std::set<st
   buffers.arrays.resize(1);
   cableTensions(model.cables, x, buffers.arrays[0]);
   views.push_back({"cable_force", FieldView::Center::Line, 1, buffers.arrays[0].data()});
-}
-
-namespace {
-
-// "a, b, c" of a group map's names, or "none"
-std::string groupList(const std::map<std::string, std::vector<int>>& groups) {
-  std::string names;
-  for (const auto& [name, members] : groups) names += (names.empty() ? "" : ", ") + name;
-  return names.empty() ? "none" : names;
-}
-
-// Keeps the lines of the named groups (all of them for "all") as the mesh's cables; every other line group
-// becomes a node group of its nodes (a Physical Curve named for a constraint or a probe, not a cable).
-void keepCableGroups(MeshData& mesh, const std::vector<std::string>& names, const YamlMap& entry) {
-  const bool all = names.size() == 1 && names[0] == "all";
-  std::vector<char> keep(mesh.lines.size(), all ? 1 : 0);
-  if (!all)
-    for (const std::string& n : names) {
-      const auto it = mesh.lineGroups.find(n);
-      if (it == mesh.lineGroups.end()) {
-        entry.failAt("cables", fmt::format("the mesh has no line group (Physical Curve) '{}'; it has: {}", n,
-                                           groupList(mesh.lineGroups)));
-      }
-      for (const int e : it->second) keep[std::size_t(e)] = 1;
-    }
-  std::vector<int> index(mesh.lines.size(), -1);
-  std::vector<std::array<int, 2>> lines;
-  std::vector<long> tags;
-  std::vector<double> rest;
-  for (std::size_t e = 0; e < mesh.lines.size(); ++e) {
-    if (!keep[e]) continue;
-    index[e] = int(lines.size());
-    lines.push_back(mesh.lines[e]);
-    if (e < mesh.lineTags.size()) tags.push_back(mesh.lineTags[e]);
-    if (e < mesh.lineRestLength.size()) rest.push_back(mesh.lineRestLength[e]);
-  }
-  std::map<std::string, std::vector<int>> groups;
-  for (auto& [name, members] : mesh.lineGroups) {
-    std::vector<int> kept;
-    std::set<int> nodes;
-    for (const int e : members) {
-      if (index[std::size_t(e)] >= 0) kept.push_back(index[std::size_t(e)]);
-      nodes.insert(mesh.lines[std::size_t(e)][0]);
-      nodes.insert(mesh.lines[std::size_t(e)][1]);
-    }
-    if (!kept.empty()) groups[name] = std::move(kept);
-    // its nodes stay a node set under the same name (joined with a node group of that name, if any)
-    std::vector<int>& ng = mesh.nodeGroups[name];
-    nodes.insert(ng.begin(), ng.end());
-    ng.assign(nodes.begin(), nodes.end());
-  }
-  mesh.lines = std::move(lines);
-  mesh.lineTags = std::move(tags);
-  mesh.lineRestLength = std::move(rest);
-  mesh.lineGroups = std::move(groups);
-}
-
-// edge_cables: a cable on every boundary edge of the mesh's triangles (an edge of one triangle only) whose
-// two nodes are in the named node group, under a line group of the same name: a tape or a rope along a
-// generated membrane's edge without a mesh file.
-void addEdgeCables(MeshData& mesh, const std::vector<std::string>& names, const YamlMap& entry) {
-  std::map<std::pair<int, int>, int> edgeUse;
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[std::size_t(k)], b = t[std::size_t((k + 1) % 3)];
-      ++edgeUse[{std::min(a, b), std::max(a, b)}];
-    }
-  for (const std::string& name : names) {
-    const auto it = mesh.nodeGroups.find(name);
-    if (it == mesh.nodeGroups.end()) {
-      entry.failAt("edge_cables", fmt::format("the mesh has no node group '{}'; it has: {}", name,
-                                              groupList(mesh.nodeGroups)));
-    }
-    const std::set<int> nodes(it->second.begin(), it->second.end());
-    std::vector<int>& group = mesh.lineGroups[name];
-    const std::size_t before = group.size();
-    for (const auto& [edge, uses] : edgeUse)
-      if (uses == 1 && nodes.count(edge.first) && nodes.count(edge.second)) {
-        group.push_back(int(mesh.lines.size()));
-        mesh.lines.push_back({edge.first, edge.second});
-        mesh.lineTags.push_back(long(mesh.lines.size()));
-      }
-    if (group.size() == before)
-      entry.failAt("edge_cables", fmt::format("the node group '{}' has no edge on the boundary of the mesh's "
-                                              "triangles: no cable to lay along it",
-                                              name));
-  }
-  if (!mesh.lineRestLength.empty()) mesh.lineRestLength.resize(mesh.lines.size(), 0.0);
-}
-
-}  // namespace
-
-void CableKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
-  if (entry.has("cable_material"))
-    in.cableMaterial = materialRef(entry, "cable_material", materialsOfKind(materials, "cable"), "cable");
-  // Which line elements of a mesh file are cables is said, not assumed: a Physical Curve may name nodes for a
-  // constraint or a probe. A generator's lines are its cables (suspension lines, tapes).
-  if (entry.has("cables")) {
-    const YAML::Node n = entry.raw("cables");
-    const std::vector<std::string> names =
-        n.IsScalar() ? std::vector<std::string>{entry.choice("cables", {"all"})} : entry.strings("cables");
-    keepCableGroups(in.mesh, names, entry);
-  } else if (entry.has("file") && !in.mesh.lines.empty()) {
-    if (in.cableMaterial >= 0) {
-      entry.fail(fmt::format(
-          "this mesh file has line elements (Physical Curves: {}) and a cable_material: say which are cables "
-          "with 'cables: [NAMES]' or 'cables: all' (the others stay node sets for constraints and probes)",
-          groupList(in.mesh.lineGroups)));
-    }
-    keepCableGroups(in.mesh, {}, entry);  // no cable material: every curve is a node set
-  }
-  if (entry.has("edge_cables")) addEdgeCables(in.mesh, entry.strings("edge_cables"), entry);
-}
-
-void CableKind::checkMeshInput(const YamlMap& entry, const MeshInput& in) const {
-  if (!in.mesh.lines.empty() && in.cableMaterial < 0)
-    entry.fail("this mesh has cables: give it a 'cable_material'");
 }
 
 }  // namespace fsi::structure

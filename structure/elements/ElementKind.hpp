@@ -1,20 +1,27 @@
 #pragma once
-// ElementKind: everything the solver needs to know about one kind of element (membrane triangle, cable, ...),
-// behind one small interface. A kind works on its own structure-of-arrays block in the Model (the typed
-// model.membranes and model.cables, or a block the kind builds itself in model.kindBlocks, e.g. the point
-// masses) and keeps its per-element loops inside its own file, templated on compile-time options: the solver
-// makes one virtual call per element kind (per step for the forces), never one per element.
+// ElementKind: everything the solver needs to know about one kind of element (membrane triangle, cable, bar,
+// point mass, ...), behind one small interface. A kind builds and works on its own structure-of-arrays block
+// in the Model (the typed model.membranes and model.cables, or a block in model.kindBlocks, e.g. the point
+// masses and the bars) and keeps its per-element loops inside its own files, templated on compile-time
+// options: the solver makes one virtual call per element kind (per step for the forces), never one per
+// element.
 //
 // What a kind provides:
+//   build        build(): its block of the model from the meshes' cells that are its own (triangles are the
+//                membranes', lines the cables' unless a kind's scene reader claimed them into
+//                MeshInput::kindInputs), its constants (wave speeds, stable-step data) and the checks of its
+//                materials and elements (InputError naming the mesh and the element);
 //   forces       makeForces(): the Effect that adds the internal forces and bounds the stable step (none for
 //                a kind without internal forces);
 //   mass         addLumpedMass() (physical) and scaleMass() (selective mass scaling);
 //   relaxation   addStiffnessBounds() (Gerschgorin row sums of the tangent stiffness) and, optionally,
 //                addStressBoundMass() (the stress-based fictitious mass);
-//   output       outputFields() and addFields() (the element-centred fields of the result files);
+//   output       outputCells() (its cells in the results file), outputFields() and addFields() (the
+//                element-centred fields written on them);
+//   report       label() and report() (its line in the run log and its entry in summary.json);
 //   diagnosis    mostStrained() and describe() (names an element in messages).
-//   input        meshKeys(), readMeshKeys(), checkMeshInput() (the kind's keys of a scene's mesh entry) and
-//                build() (its own block of the model, for a kind other than membranes and cables).
+// How a scene spells a kind (its mesh keys, its materials) is not here: that is the kind's scene reader in
+// structure/scene/kinds/, registered beside it (docs/ARCHITECTURE.md "Adding an element kind").
 // Kinds are registered by name in elementKinds() (ElementRegistry.cpp): the order there is the order of
 // every loop over kinds (mass sums, field lists), so results do not depend on anything else.
 
@@ -22,6 +29,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "structure/effects/Effect.hpp"
@@ -29,8 +37,6 @@
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure {
-
-class YamlMap;
 
 /// Element damping, the same for every kind: stiffness-proportional Rayleigh β [s] and the linear bulk
 /// viscosity b1 (viscous stress b1 ρ c L_e times the strain rate, ρ and c the element's — scaled — density
@@ -70,25 +76,19 @@ class ElementKind {
   virtual ~ElementKind() = default;
   /// Registry name ("membrane", "cable"); also the name of its force effect in logs.
   virtual std::string name() const = 0;
+  /// Its elements in the run log's model line, plural ("membrane triangles", "cables").
+  virtual std::string label() const = 0;
   virtual int count(const Model& model) const = 0;
   /// "triangle 12 of mesh 'canopy'".
   virtual std::string describe(const Model& model, int element) const = 0;
 
-  /// Keys of a scene's mesh entry that this kind reads (`material` for membranes); the mesh reader accepts
-  /// the keys of every registered kind, in registry order, besides `file` and `generator`.
-  virtual std::vector<std::string> meshKeys() const { return {}; }
-  /// Reads this kind's mesh keys of one mesh entry into `in` (errors located at the key). Default: none.
-  virtual void readMeshKeys(const YamlMap& /*entry*/, const MaterialTable& /*materials*/,
-                            MeshInput& /*in*/) const {}
-  /// Called once the entry's keys are known to be valid: rejects a mesh that has elements of this kind but
-  /// no material for them (located at the entry). Default: nothing to check.
-  virtual void checkMeshInput(const YamlMap& /*entry*/, const MeshInput& /*in*/) const {}
-  /// Builds the kind's own block in `model.kindBlocks` from the meshes (called by buildModel for every kind,
-  /// in registry order, once the nodes are numbered: model.meshes[m].node maps a mesh-local node) and
-  /// validates its materials and references (InputError naming the mesh). The lumped masses are summed
-  /// after every kind is built. Default: nothing (membranes and cables are buildModel's typed blocks).
-  virtual void build(const std::vector<MeshInput>& /*inputs*/, const MaterialTable& /*materials*/,
-                     Model& /*model*/) const {}
+  /// Builds the kind's own block from the meshes (called by buildModel for every kind, in registry order,
+  /// once the nodes are numbered: model.meshes[m].node maps a mesh-local node): its elements, sorted as it
+  /// likes, their reference geometry and constants; validates its materials and references (InputError
+  /// naming the mesh, or the element through the model's describe functions). The lumped masses are summed
+  /// after every kind is built.
+  virtual void build(const std::vector<MeshInput>& inputs, const MaterialTable& materials,
+                     Model& model) const = 0;
 
   /// The force effect over the kind's elements (references the model: create it once the model is in place);
   /// nullptr for a kind without internal forces (a point mass).
@@ -111,6 +111,9 @@ class ElementKind {
   virtual void addStressBoundMass(const Model& /*model*/, const double* /*x*/, double /*lambda*/,
                                   std::vector<double>& /*m*/, std::vector<char>& /*covered*/) const {}
 
+  /// The kind's cells in the results file (connectivity in model nodes); nullopt for a kind that writes
+  /// none. A set is written to /mesh/<dataset> even when empty, its XDMF grid only when it has cells.
+  virtual std::optional<CellSet> outputCells(const Model& /*model*/) const { return std::nullopt; }
   /// Names of the element fields this kind can write (the scene's output.fields entries).
   virtual std::vector<std::string> outputFields() const { return {}; }
   /// Appends views of the requested fields at configuration x; the data live in `buffers` until the next
@@ -122,6 +125,12 @@ class ElementKind {
   /// nullopt if the kind has none there or does not report it.
   virtual std::optional<LimitingElement> limitingElementAt(const Model& /*model*/, int /*node*/) const {
     return std::nullopt;
+  }
+  /// Its characteristic quantities at configuration x for summary.json (e.g. the largest cable force),
+  /// name and value; the count is reported by the caller. Default: none.
+  virtual std::vector<std::pair<std::string, double>> report(const Model& /*model*/,
+                                                             const double* /*x*/) const {
+    return {};
   }
   /// The most strained element (or the first non-finite one); nullopt if the kind reports none.
   virtual std::optional<StrainedElement> mostStrained(const Model& /*model*/, const double* /*x*/) const {

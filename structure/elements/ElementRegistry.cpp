@@ -1,6 +1,7 @@
 // The registry of element kinds: one line per kind. The order is the order of every loop over kinds (lumped
 // and scaled mass sums, stiffness bounds, output fields, diagnosis); new kinds go at the end so existing
 // results keep their round-off.
+#include "structure/elements/BarElement.hpp"
 #include "structure/elements/CableElement.hpp"
 #include "structure/elements/ElementKind.hpp"
 #include "structure/elements/MembraneElement.hpp"
@@ -12,7 +13,8 @@ const std::vector<const ElementKind*>& elementKinds() {
   static const MembraneKind membrane;
   static const CableKind cable;
   static const PointMassKind pointMass;
-  static const std::vector<const ElementKind*> kinds{&membrane, &cable, &pointMass};
+  static const BarKind bar;
+  static const std::vector<const ElementKind*> kinds{&membrane, &cable, &pointMass, &bar};
   return kinds;
 }
 

@@ -1,15 +1,133 @@
 #include "structure/elements/MembraneElement.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/elements/MembraneKinematics.hpp"
-#include "structure/scene/ReadMaterials.hpp"
-#include "structure/scene/YamlAccess.hpp"
+#include "structure/model/Error.hpp"
+#include "structure/model/PositiveValue.hpp"
 
 namespace fsi::structure {
+
+namespace {
+
+// The materials' ranges and messages are their keys' (model/MaterialKeys): the scene reader checks the same
+// entries, located at the key; this guards a Model built from materials made in code.
+void checkMaterials(const std::vector<MembraneMaterial>& mm) {
+  for (const auto& m : mm) checkMaterial(m);
+}
+
+}  // namespace
+
+void MembraneKind::build(const std::vector<MeshInput>& inputs, const MaterialTable& materials,
+                         Model& model) const {
+  checkMaterials(materials.membrane);
+  model.membraneMaterials = materials.membrane;
+  for (std::size_t m = 0; m < inputs.size(); ++m)
+    if (!inputs[m].mesh.triangles.empty() && inputs[m].membraneMaterial < 0)
+      throw MeshInputError(int(m),
+                           fmt::format("mesh '{}' has triangles but no membrane material", inputs[m].mesh.name));
+  const Nodes& N = model.nodes;
+  // Sorted by material then by first node.
+  struct TriRef {
+    int mesh, local, material, minNode;
+  };
+  std::vector<TriRef> tris;
+  for (std::size_t m = 0; m < inputs.size(); ++m) {
+    const MeshData& md = inputs[m].mesh;
+    const auto& nm = model.meshes[m].node;
+    for (std::size_t e = 0; e < md.triangles.size(); ++e) {
+      const auto& t = md.triangles[e];
+      for (int k = 0; k < 3; ++k)
+        if (t[k] < 0 || t[k] >= int(md.points.size()))
+          throw MeshInputError(int(m), fmt::format("mesh '{}': triangle {} refers to node index {} out of range", md.name,
+                                       e < md.triangleTags.size() ? md.triangleTags[e] : long(e + 1), t[k]));
+      tris.push_back({int(m), int(e), inputs[m].membraneMaterial, std::min({nm[t[0]], nm[t[1]], nm[t[2]]})});
+    }
+  }
+  std::stable_sort(tris.begin(), tris.end(), [](const TriRef& a, const TriRef& b) {
+    return a.material != b.material ? a.material < b.material : a.minNode < b.minNode;
+  });
+
+  MembraneTriangles& T = model.membranes;
+  T.count = int(tris.size());
+  T.conn.resize(3 * T.count);
+  T.geo.resize(MembraneTriangles::kGeo * T.count);
+  T.invWaveSpeed.resize(T.count);
+  T.refStep2.resize(T.count);
+  T.tag.resize(T.count);
+  T.mesh.resize(T.count);
+  for (std::size_t m = 0; m < inputs.size(); ++m)
+    model.meshes[m].triangle.assign(inputs[m].mesh.triangles.size(), -1);
+  for (int e = 0; e < T.count; ++e) {
+    const TriRef& r = tris[e];
+    const MeshData& md = inputs[r.mesh].mesh;
+    const auto& t = md.triangles[r.local];
+    model.meshes[r.mesh].triangle[r.local] = e;
+    T.tag[e] = r.local < int(md.triangleTags.size()) ? md.triangleTags[r.local] : long(r.local + 1);
+    T.mesh[e] = r.mesh;
+    int n[3];
+    for (int k = 0; k < 3; ++k) n[k] = T.conn[3 * e + k] = model.meshes[r.mesh].node[t[k]];
+    if (n[0] == n[1] || n[1] == n[2] || n[0] == n[2])
+      throw MeshInputError(r.mesh, fmt::format("{} repeats a node (nodes {}, {}, {})", model.describeTriangle(e),
+                                   N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
+    double d21[3], d31[3];
+    for (int k = 0; k < 3; ++k) {
+      d21[k] = N.X[3 * n[1] + k] - N.X[3 * n[0] + k];
+      d31[k] = N.X[3 * n[2] + k] - N.X[3 * n[0] + k];
+    }
+    const double a0 = std::sqrt(d21[0] * d21[0] + d21[1] * d21[1] + d21[2] * d21[2]);
+    const double l31 = std::sqrt(d31[0] * d31[0] + d31[1] * d31[1] + d31[2] * d31[2]);
+    const double b0 = a0 > 0 ? (d21[0] * d31[0] + d21[1] * d31[1] + d21[2] * d31[2]) / a0 : 0.0;
+    const double c0 = std::sqrt(std::max(0.0, l31 * l31 - b0 * b0));
+    const double lmax = std::max(a0, l31);
+    if (!(a0 > 0) || !(c0 > 1e-9 * lmax))
+      throw MeshInputError(
+          r.mesh, fmt::format("{} is degenerate (zero area; nodes {}, {}, {}): check for duplicate or "
+                      "collinear nodes",
+                      model.describeTriangle(e), N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
+    const MembraneMaterial& mat = model.membraneMaterials[r.material];
+    const double area = 0.5 * a0 * c0;
+    double* g = &T.geo[MembraneTriangles::kGeo * e];
+    g[0] = 1.0 / a0;
+    g[1] = b0;
+    g[2] = 1.0 / c0;
+    g[3] = mat.thickness * area;
+    T.invWaveSpeed[e] = 1.0 / membraneWaveSpeed(mat);
+    const double l32 = std::sqrt((a0 - b0) * (a0 - b0) + c0 * c0);
+    const double h0 = a0 * c0 / std::max({a0, l31, l32});
+    T.refStep2[e] = h0 * T.invWaveSpeed[e] * h0 * T.invWaveSpeed[e];
+    if (T.blocks.empty() || T.blocks.back().material != r.material) {
+      MembraneBlock b;
+      b.begin = e;
+      b.material = r.material;
+      b.young = mat.young;
+      b.poisson = mat.poisson;
+      b.c11 = mat.young / (1.0 - mat.poisson * mat.poisson);
+      b.density = mat.density;
+      b.wrinkling = mat.wrinkling;
+      T.blocks.push_back(b);
+    }
+    T.blocks.back().end = e + 1;
+  }
+}
+
+std::optional<CellSet> MembraneKind::outputCells(const Model& model) const {
+  return CellSet{"membranes", "triangles", "Triangle", "Triangle", 3, model.membranes.conn};
+}
+
+std::vector<std::pair<std::string, double>> MembraneKind::report(const Model& model, const double* x) const {
+  if (model.membranes.count == 0) return {};
+  MembraneStressField f;
+  membraneStresses(model.membranes, x, f);
+  double major = -std::numeric_limits<double>::infinity();
+  for (int e = 0; e < model.membranes.count; ++e) major = std::max(major, f.principal[2 * std::size_t(e)]);
+  return {{"max_principal_stress", major}};
+}
 
 std::unique_ptr<Effect> MembraneKind::makeForces(const Model& model, const ElementDamping& damping) const {
   return std::make_unique<MembraneForces>(model.membranes, damping);
@@ -169,16 +287,6 @@ std::optional<StrainedElement> MembraneKind::mostStrained(const Model& model, co
   }
   if (worst.element < 0) return std::nullopt;
   return worst;
-}
-
-void MembraneKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
-  if (entry.has("material"))
-    in.membraneMaterial = materialRef(entry, "material", materialsOfKind(materials, "membrane"), "membrane");
-}
-
-void MembraneKind::checkMeshInput(const YamlMap& entry, const MeshInput& in) const {
-  if (!in.mesh.triangles.empty() && in.membraneMaterial < 0)
-    entry.fail("this mesh has triangles: give it a membrane 'material'");
 }
 
 }  // namespace fsi::structure

@@ -7,10 +7,6 @@
 
 #include "structure/model/Error.hpp"
 #include "structure/model/MaterialKeys.hpp"
-#include "structure/scene/JoinNames.hpp"
-#include "structure/scene/NearestName.hpp"
-#include "structure/scene/ReadMaterials.hpp"
-#include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
 
@@ -23,32 +19,6 @@ const PointMasses& pointMassesOf(const Model& model) {
 std::string PointMassKind::describe(const Model& model, int element) const {
   const PointMasses& P = pointMassesOf(model);
   return fmt::format("point mass {} of mesh '{}'", P.tag[element], model.meshes[P.mesh[element]].name);
-}
-
-// `point_masses: {NODE_GROUP: MATERIAL, ...}`: every node of the mesh's node group carries one point mass of
-// the point_mass material (a payload on the parafoil's `payload` node).
-void PointMassKind::readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const {
-  if (!entry.has("point_masses")) return;
-  const YamlMap pm = entry.map("point_masses");
-  const auto& idx = materialsOfKind(materials, "point_mass");
-  const MeshData& mesh = in.mesh;
-  PointMassInput out;
-  if (pm.keys().empty()) pm.fail("give at least one 'NODE_GROUP: MATERIAL' pair, or leave point_masses out");
-  std::vector<std::string> groups;
-  for (const auto& kv : mesh.nodeGroups) groups.push_back(kv.first);
-  for (const auto& group : pm.keys()) {
-    const int material = materialRef(pm, group, idx, "point_mass");
-    const auto it = mesh.nodeGroups.find(group);
-    if (it == mesh.nodeGroups.end()) {
-      const std::string near = closestMatch(group, groups);
-      pm.failAt(group, fmt::format("the mesh has no node group '{}'{}; its node groups: {}", group,
-                                   near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                                   groups.empty() ? "(none)" : joinNames(groups)));
-    }
-    if (it->second.empty()) pm.failAt(group, fmt::format("node group '{}' is empty", group));
-    for (int node : it->second) out.push_back({node, material});
-  }
-  in.kindInputs[name()] = std::move(out);
 }
 
 void PointMassKind::build(const std::vector<MeshInput>& inputs, const MaterialTable& materials,
@@ -98,6 +68,15 @@ double PointMassKind::referenceStableDt(const Model& /*model*/) const {
 
 ScaledMass PointMassKind::scaleMass(Model& /*model*/, double /*need*/) const {
   return {};
+}
+
+std::vector<std::pair<std::string, double>> PointMassKind::report(const Model& model,
+                                                                  const double* /*x*/) const {
+  const PointMasses& P = pointMassesOf(model);
+  if (P.count == 0) return {};
+  double total = 0;
+  for (const double m : P.mass) total += m;
+  return {{"total_mass", total}};
 }
 
 // No stiffness: nothing to add to the Gerschgorin bounds.

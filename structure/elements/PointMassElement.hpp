@@ -2,8 +2,9 @@
 // The point mass as an element kind: a lumped mass on one node (a payload). It has no internal force, no
 // stiffness and no wave speed, so it adds no force effect, does not bound the stable step and is never
 // mass-scaled; its only contribution is its mass, which is physical mass (gravity acts on it, body drag and
-// probes see it). The kind owns everything about it: its mesh key (`point_masses: {NODE_GROUP: MATERIAL}`),
-// its block of the model (PointMasses, in model.kindBlocks) and the building of that block.
+// probes see it). The kind owns its block of the model (PointMasses, in model.kindBlocks) and the building of
+// that block; its scene reader (structure/scene/kinds/PointMassKeys.cpp) reads its mesh key
+// (`point_masses: {NODE_GROUP: MATERIAL}`) into a PointMassInput.
 
 #include <array>
 #include <vector>
@@ -32,11 +33,10 @@ const PointMasses& pointMassesOf(const Model& model);
 class PointMassKind final : public ElementKind {
  public:
   std::string name() const override { return "point_mass"; }
+  std::string label() const override { return "point masses"; }
   int count(const Model& model) const override { return pointMassesOf(model).count; }
   /// "point mass 1 of mesh 'wing'".
   std::string describe(const Model& model, int element) const override;
-  std::vector<std::string> meshKeys() const override { return {"point_masses"}; }
-  void readMeshKeys(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) const override;
   /// The point masses in mesh order, each mesh's in the order of its `point_masses:` entry.
   void build(const std::vector<MeshInput>& inputs, const MaterialTable& materials,
              Model& model) const override;
@@ -47,6 +47,8 @@ class PointMassKind final : public ElementKind {
   ScaledMass scaleMass(Model& model, double need) const override;
   void addStiffnessBounds(const Model& model, const double* x, std::vector<double>& dofRow,
                           std::vector<double>& dofDiag) const override;
+  /// total_mass [kg].
+  std::vector<std::pair<std::string, double>> report(const Model& model, const double* x) const override;
 };
 
 }  // namespace fsi::structure

@@ -115,24 +115,6 @@ std::vector<std::string> linkNames(const Context& c, hid_t group, const std::str
   return names;
 }
 
-FieldView::Center centerFromName(const std::string& name) {
-  if (name == "Triangle") return FieldView::Center::Triangle;
-  if (name == "Line") return FieldView::Center::Line;
-  return FieldView::Center::Node;
-}
-
-const char* centerName(FieldView::Center c) {
-  switch (c) {
-    case FieldView::Center::Node:
-      return "Node";
-    case FieldView::Center::Triangle:
-      return "Triangle";
-    case FieldView::Center::Line:
-      return "Line";
-  }
-  return "?";
-}
-
 const char* attributeType(int components) {
   switch (components) {
     case 1:
@@ -188,7 +170,7 @@ std::string stepGroupName(std::size_t index) {
 struct ResultsWriter::Impl {
   struct FieldMeta {
     std::string name;
-    FieldView::Center center;
+    std::string center;  // "Node" or a cell set's center name
     int components;
   };
   struct StepRecord {
@@ -200,8 +182,7 @@ struct ResultsWriter::Impl {
   fs::path h5Path;
   fs::path xdmfPath;
   int numNodes = 0;
-  std::size_t numTriangles = 0;
-  std::size_t numLines = 0;
+  std::vector<CellSet> cells;  // in the order given: the order of the grids
   Hid file;
   Hid steps;
   Hid tables;
@@ -209,23 +190,20 @@ struct ResultsWriter::Impl {
   std::size_t nextIndex = 0;  // of the next step group (append mode: after the kept ones)
 
   Context ctx() const { return Context{{h5Path, "ResultsWriter"}}; }
-  static std::unique_ptr<Impl> prepare(fs::path h5File, int numNodes,
-                                       const std::vector<std::array<int, 3>>& triangles,
-                                       const std::vector<std::array<int, 2>>& lines);
-  void create(const std::vector<std::array<int, 3>>& triangles, const std::vector<std::array<int, 2>>& lines);
-  void open(double keepUntil, const std::vector<std::array<int, 3>>& triangles,
-            const std::vector<std::array<int, 2>>& lines);
+  static std::unique_ptr<Impl> prepare(fs::path h5File, int numNodes, std::vector<CellSet> cells);
+  void create();
+  void open(double keepUntil);
 
-  std::size_t count(FieldView::Center c) const {
-    switch (c) {
-      case FieldView::Center::Node:
-        return static_cast<std::size_t>(numNodes);
-      case FieldView::Center::Triangle:
-        return numTriangles;
-      case FieldView::Center::Line:
-        return numLines;
-    }
-    return 0;
+  // The cell set whose fields have center `center`; nullptr for "Node" or an unknown one.
+  const CellSet* cellSet(const std::string& center) const {
+    for (const CellSet& s : cells)
+      if (s.center == center) return &s;
+    return nullptr;
+  }
+  std::size_t count(const std::string& center) const {
+    if (center == "Node") return static_cast<std::size_t>(numNodes);
+    const CellSet* s = cellSet(center);
+    return s ? s->cells() : 0;
   }
 
   void requireOpen(const char* operation) const {
@@ -287,8 +265,8 @@ void ResultsWriter::Impl::writeXdmf() const {
                    r.group);
     fmt::format_to(out, "        <Time Value=\"{}\"/>\n", time);
 
-    auto grid = [&](const char* name, const char* topology, int nodesPerElement, std::size_t numElements,
-                    const char* connectivity, FieldView::Center cellCenter) {
+    auto grid = [&](const std::string& name, const std::string& topology, int nodesPerElement,
+                    std::size_t numElements, const std::string& connectivity, const std::string& cellCenter) {
       fmt::format_to(out, "        <Grid Name=\"{}\" GridType=\"Uniform\">\n", name);
       fmt::format_to(out, "          <Time Value=\"{}\"/>\n", time);
       fmt::format_to(
@@ -299,21 +277,19 @@ void ResultsWriter::Impl::writeXdmf() const {
       dataItem(fmt::format("{} 3", n), "Float", 8, stepPath + "/coordinates", 12);
       x += "          </Geometry>\n";
       for (const FieldMeta& f : r.fields) {
-        if (f.center != FieldView::Center::Node && f.center != cellCenter) continue;
+        if (f.center != "Node" && f.center != cellCenter) continue;
         const std::size_t cnt = count(f.center);
         fmt::format_to(out, "          <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n",
-                       xmlEscape(f.name), attributeType(f.components),
-                       f.center == FieldView::Center::Node ? "Node" : "Cell");
+                       xmlEscape(f.name), attributeType(f.components), f.center == "Node" ? "Node" : "Cell");
         dataItem(f.components == 1 ? fmt::format("{}", cnt) : fmt::format("{} {}", cnt, f.components),
                  "Float", 8, stepPath + "/" + f.name, 12);
         x += "          </Attribute>\n";
       }
       x += "        </Grid>\n";
     };
-    if (numTriangles > 0) {
-      grid("membranes", "Triangle", 3, numTriangles, "/mesh/triangles", FieldView::Center::Triangle);
-    }
-    if (numLines > 0) grid("cables", "Polyline", 2, numLines, "/mesh/lines", FieldView::Center::Line);
+    // One grid per element kind's cell set that has cells, in the order given.
+    for (const CellSet& s : cells)
+      if (s.cells() > 0) grid(s.grid, s.topology, s.nodesPerCell, s.cells(), "/mesh/" + s.dataset, s.center);
     x += "      </Grid>\n";
   }
   x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
@@ -329,13 +305,22 @@ void ResultsWriter::Impl::writeXdmf() const {
 
 namespace {
 
-template <typename Element>
-void checkConnectivity(const std::vector<Element>& elements, int numNodes, const char* kind) {
-  for (std::size_t e = 0; e < elements.size(); ++e) {
-    for (const int node : elements[e]) {
+void checkCells(const std::vector<CellSet>& cells, int numNodes) {
+  std::set<std::string> centers, datasets;
+  for (const CellSet& s : cells) {
+    checkName(s.dataset, "cell set");
+    if (s.center == "Node" || s.center.empty() || !centers.insert(s.center).second ||
+        !datasets.insert(s.dataset).second || s.nodesPerCell <= 0 ||
+        s.conn.size() % static_cast<std::size_t>(s.nodesPerCell) != 0)
+      throw std::invalid_argument(fmt::format(
+          "ResultsWriter: cell set '{}' (center '{}') is given twice, is named 'Node' or has a partial cell",
+          s.dataset, s.center));
+    for (std::size_t i = 0; i < s.conn.size(); ++i) {
+      const int node = s.conn[i];
       if (node < 0 || node >= numNodes) {
-        throw std::invalid_argument(
-            fmt::format("ResultsWriter: {} {} references node {} outside [0, {})", kind, e, node, numNodes));
+        throw std::invalid_argument(fmt::format("ResultsWriter: {} {} references node {} outside [0, {})",
+                                                s.dataset, i / static_cast<std::size_t>(s.nodesPerCell), node,
+                                                numNodes));
       }
     }
   }
@@ -343,8 +328,7 @@ void checkConnectivity(const std::vector<Element>& elements, int numNodes, const
 
 }  // namespace
 
-void ResultsWriter::Impl::create(const std::vector<std::array<int, 3>>& triangles,
-                                 const std::vector<std::array<int, 2>>& lines) {
+void ResultsWriter::Impl::create() {
   const hdf5::QuietErrors quiet;
   const Context c = ctx();
   file = c.check(H5Fcreate(h5Path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
@@ -353,10 +337,9 @@ void ResultsWriter::Impl::create(const std::vector<std::array<int, 3>>& triangle
                          static_cast<long long>(numNodes), "/");
   {
     const Hid mesh = c.createGroup(file.get(), "mesh", "/mesh");
-    c.writeDataset(mesh.get(), "triangles", "/mesh/triangles", H5T_STD_I32LE, H5T_NATIVE_INT,
-                   triangles.data(), {numTriangles, 3});
-    c.writeDataset(mesh.get(), "lines", "/mesh/lines", H5T_STD_I32LE, H5T_NATIVE_INT, lines.data(),
-                   {numLines, 2});
+    for (const CellSet& s : cells)
+      c.writeDataset(mesh.get(), s.dataset, "/mesh/" + s.dataset, H5T_STD_I32LE, H5T_NATIVE_INT,
+                     s.conn.data(), {s.cells(), static_cast<hsize_t>(s.nodesPerCell)});
   }
   steps = c.createGroup(file.get(), "steps", "/steps");
   tables = c.createGroup(file.get(), "tables", "/tables");
@@ -364,29 +347,31 @@ void ResultsWriter::Impl::create(const std::vector<std::array<int, 3>>& triangle
   writeXdmf();  // an empty but valid index replaces any stale one from a previous run
 }
 
-void ResultsWriter::Impl::open(double keepUntil, const std::vector<std::array<int, 3>>& triangles,
-                               const std::vector<std::array<int, 2>>& lines) {
+void ResultsWriter::Impl::open(double keepUntil) {
   const hdf5::QuietErrors quiet;
   const Context c = ctx();
   file =
       c.check(H5Fopen(h5Path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "cannot open for appending", "");
   // The series must be of this mesh: a restart with another scene starts a new file instead.
   const auto nodes = readScalarAttribute<long long>(c, file.get(), "num_nodes", "/");
-  std::vector<hsize_t> triDims, lineDims;
-  const std::vector<int> tri =
-      readDataset<int>(c, file.get(), "mesh/triangles", "/mesh/triangles", H5T_NATIVE_INT, triDims);
-  const std::vector<int> lin =
-      readDataset<int>(c, file.get(), "mesh/lines", "/mesh/lines", H5T_NATIVE_INT, lineDims);
-  const bool same =
-      nodes == numNodes && tri.size() == 3 * triangles.size() && lin.size() == 2 * lines.size() &&
-      std::equal(tri.begin(), tri.end(), triangles.empty() ? nullptr : triangles.front().data()) &&
-      std::equal(lin.begin(), lin.end(), lines.empty() ? nullptr : lines.front().data());
+  bool same = nodes == numNodes;
+  std::string held = fmt::format("{} nodes", nodes), given = fmt::format("{} nodes", numNodes);
+  for (const CellSet& s : cells) {
+    const std::string path = "/mesh/" + s.dataset;
+    std::vector<hsize_t> dims;
+    const std::vector<int> conn =
+        H5Lexists(file.get(), path.c_str(), H5P_DEFAULT) > 0
+            ? readDataset<int>(c, file.get(), path.substr(1), path, H5T_NATIVE_INT, dims)
+            : std::vector<int>{-1};
+    same = same && conn == s.conn;
+    held += fmt::format(", {} {}", conn.size() / static_cast<std::size_t>(s.nodesPerCell), s.dataset);
+    given += fmt::format(", {}", s.cells());
+  }
   if (!same)
     throw std::runtime_error(fmt::format(
-        "ResultsWriter: cannot continue '{}': it holds another mesh ({} nodes, {} triangles, {} lines; this "
-        "run "
-        "has {}, {}, {}); move it away to start a new series",
-        h5Path.string(), nodes, tri.size() / 3, lin.size() / 2, numNodes, numTriangles, numLines));
+        "ResultsWriter: cannot continue '{}': it holds another mesh ({}; this run has {}); move it away to "
+        "start a new series",
+        h5Path.string(), held, given));
   steps = c.check(H5Gopen2(file.get(), "steps", H5P_DEFAULT), H5Gclose, "cannot open group", "/steps");
   tables = c.check(H5Gopen2(file.get(), "tables", H5P_DEFAULT), H5Gclose, "cannot open group", "/tables");
 
@@ -411,7 +396,7 @@ void ResultsWriter::Impl::open(double keepUntil, const std::vector<std::array<in
       const int rank = H5Sget_simple_extent_ndims(space.get());
       if (rank < 1 || rank > 2) c.fail("unexpected rank of", path);
       H5Sget_simple_extent_dims(space.get(), dims, nullptr);
-      r.fields.push_back({field, centerFromName(readStringAttribute(c, dset.get(), "center", path)),
+      r.fields.push_back({field, readStringAttribute(c, dset.get(), "center", path),
                           rank == 1 ? 1 : static_cast<int>(dims[1])});
     }
     nextIndex = std::max(nextIndex, static_cast<std::size_t>(std::stoul(name)) + 1);
@@ -425,19 +410,16 @@ void ResultsWriter::Impl::open(double keepUntil, const std::vector<std::array<in
 }
 
 // Everything both constructors do before touching the file.
-std::unique_ptr<ResultsWriter::Impl> ResultsWriter::Impl::prepare(
-    fs::path h5File, int numNodes, const std::vector<std::array<int, 3>>& triangles,
-    const std::vector<std::array<int, 2>>& lines) {
+std::unique_ptr<ResultsWriter::Impl> ResultsWriter::Impl::prepare(fs::path h5File, int numNodes,
+                                                                  std::vector<CellSet> cells) {
   if (numNodes < 0) throw std::invalid_argument("ResultsWriter: negative node count");
-  checkConnectivity(triangles, numNodes, "triangle");
-  checkConnectivity(lines, numNodes, "line");
+  checkCells(cells, numNodes);
   auto m = std::make_unique<Impl>();
   m->h5Path = std::move(h5File);
   m->xdmfPath = m->h5Path;
   m->xdmfPath.replace_extension(".xdmf");
   m->numNodes = numNodes;
-  m->numTriangles = triangles.size();
-  m->numLines = lines.size();
+  m->cells = std::move(cells);
   if (m->h5Path.has_parent_path()) {
     std::error_code ec;
     fs::create_directories(m->h5Path.parent_path(), ec);
@@ -449,22 +431,40 @@ std::unique_ptr<ResultsWriter::Impl> ResultsWriter::Impl::prepare(
   return m;
 }
 
-ResultsWriter::ResultsWriter(fs::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
-                             std::vector<std::array<int, 2>> lines)
-    : impl_(Impl::prepare(std::move(h5File), numNodes, triangles, lines)) {
-  impl_->create(triangles, lines);
+std::vector<CellSet> ResultsWriter::surfaceAndLines(const std::vector<std::array<int, 3>>& triangles,
+                                                    const std::vector<std::array<int, 2>>& lines) {
+  CellSet t{"membranes", "triangles", "Triangle", "Triangle", 3, {}};
+  for (const auto& e : triangles) t.conn.insert(t.conn.end(), e.begin(), e.end());
+  CellSet l{"cables", "lines", "Line", "Polyline", 2, {}};
+  for (const auto& e : lines) l.conn.insert(l.conn.end(), e.begin(), e.end());
+  return {std::move(t), std::move(l)};
 }
 
-ResultsWriter ResultsWriter::append(fs::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
-                                    std::vector<std::array<int, 2>> lines, double keepUntil) {
+ResultsWriter::ResultsWriter(fs::path h5File, int numNodes, std::vector<CellSet> cells)
+    : impl_(Impl::prepare(std::move(h5File), numNodes, std::move(cells))) {
+  impl_->create();
+}
+
+ResultsWriter::ResultsWriter(fs::path h5File, int numNodes, const std::vector<std::array<int, 3>>& triangles,
+                             const std::vector<std::array<int, 2>>& lines)
+    : ResultsWriter(std::move(h5File), numNodes, surfaceAndLines(triangles, lines)) {}
+
+ResultsWriter ResultsWriter::append(fs::path h5File, int numNodes, std::vector<CellSet> cells,
+                                    double keepUntil) {
   ResultsWriter w;
-  w.impl_ = Impl::prepare(std::move(h5File), numNodes, triangles, lines);
+  w.impl_ = Impl::prepare(std::move(h5File), numNodes, std::move(cells));
   std::error_code ec;
   if (fs::exists(w.impl_->h5Path, ec))
-    w.impl_->open(keepUntil, triangles, lines);
+    w.impl_->open(keepUntil);
   else
-    w.impl_->create(triangles, lines);
+    w.impl_->create();
   return w;
+}
+
+ResultsWriter ResultsWriter::append(fs::path h5File, int numNodes,
+                                    const std::vector<std::array<int, 3>>& triangles,
+                                    const std::vector<std::array<int, 2>>& lines, double keepUntil) {
+  return append(std::move(h5File), numNodes, surfaceAndLines(triangles, lines), keepUntil);
 }
 
 ResultsWriter::~ResultsWriter() = default;  // Impl closes the file
@@ -492,11 +492,15 @@ void ResultsWriter::writeStep(double time, long step, const double* coordinates,
       throw std::invalid_argument(fmt::format(
           "ResultsWriter: field '{}' has {} components; expected 1, 3 or 6", f.name, f.components));
     }
-    const std::size_t expected = m.count(f.center) * static_cast<std::size_t>(f.components);
+    const std::string center = f.centerName();
+    if (center != "Node" && m.cellSet(center) == nullptr)
+      throw std::invalid_argument(fmt::format(
+          "ResultsWriter: field '{}' is centred on '{}', a cell set the file does not have", f.name, center));
+    const std::size_t expected = m.count(center) * static_cast<std::size_t>(f.components);
     if (f.size != FieldView::kUnknownSize && f.size != expected) {
       throw std::invalid_argument(fmt::format(
           "ResultsWriter: field '{}' has {} values but {} {}-centred entities x {} components need {}",
-          f.name, f.size, m.count(f.center), centerName(f.center), f.components, expected));
+          f.name, f.size, m.count(center), center, f.components, expected));
     }
     if (f.data == nullptr && expected > 0) {
       throw std::invalid_argument(fmt::format("ResultsWriter: field '{}' has no data", f.name));
@@ -517,13 +521,14 @@ void ResultsWriter::writeStep(double time, long step, const double* coordinates,
                    coordinates, {n, 3});
     for (const FieldView& f : fields) {
       const std::string path = groupPath + "/" + f.name;
-      std::vector<hsize_t> dims{m.count(f.center)};
+      const std::string center = f.centerName();
+      std::vector<hsize_t> dims{m.count(center)};
       if (f.components > 1) dims.push_back(static_cast<hsize_t>(f.components));
       const Hid dset =
           c.writeDataset(group.get(), f.name, path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.data, dims);
-      c.writeStringAttribute(dset.get(), "center", centerName(f.center), path);
+      c.writeStringAttribute(dset.get(), "center", center, path);
       if (f.components == 6) c.writeStringAttribute(dset.get(), "component_order", "xx yy zz xy yz xz", path);
-      record.fields.push_back({f.name, f.center, f.components});
+      record.fields.push_back({f.name, center, f.components});
     }
   } catch (...) {
     // Drop the partial group so that the index can be reused; best effort, the original error matters.

@@ -3,8 +3,8 @@
 // file next to it so that ParaView (Xdmf3 readers) opens the run directly.
 //
 // HDF5 layout:
-//   /mesh/triangles            (nt x 3, int32)   written once
-//   /mesh/lines                (nl x 2, int32)   written once
+//   /mesh/<dataset>            (n x nodesPerCell, int32), one per cell set (an element kind's cells:
+//                              triangles, lines, bars, ...), written once; one XDMF grid per set with cells
 //   /steps/<000000>/           attributes time (double), step (int64)
 //   /steps/<000000>/coordinates (N x 3, double)
 //   /steps/<000000>/<field>     (count) or (count x components), double; attribute center
@@ -32,16 +32,26 @@ namespace fsi::structure {
 
 class ResultsWriter {
  public:
-  /// Creates (truncates) h5File and writes the mesh connectivity; the XDMF index is h5File with extension
-  /// .xdmf. Throws std::invalid_argument for out-of-range connectivity, std::runtime_error on I/O failure.
-  ResultsWriter(std::filesystem::path h5File, int numNodes, std::vector<std::array<int, 3>> triangles,
-                std::vector<std::array<int, 2>> lines);
+  /// Creates (truncates) h5File and writes the connectivity of every cell set (the element kinds',
+  /// ElementKind::outputCells, in their order); the XDMF index is h5File with extension .xdmf. Throws
+  /// std::invalid_argument for out-of-range connectivity or a repeated set, std::runtime_error on I/O
+  /// failure.
+  ResultsWriter(std::filesystem::path h5File, int numNodes, std::vector<CellSet> cells);
+  /// The same with the two cell sets of a membrane-and-cable mesh (surfaceAndLines).
+  ResultsWriter(std::filesystem::path h5File, int numNodes, const std::vector<std::array<int, 3>>& triangles,
+                const std::vector<std::array<int, 2>>& lines);
   /// Continues the series in h5File: keeps its steps with time <= keepUntil and drops the later ones, then
   /// writes further steps after them. The file's mesh must be the one given (else std::runtime_error naming
   /// the file); a missing file is created as by the constructor.
+  static ResultsWriter append(std::filesystem::path h5File, int numNodes, std::vector<CellSet> cells,
+                              double keepUntil);
   static ResultsWriter append(std::filesystem::path h5File, int numNodes,
-                              std::vector<std::array<int, 3>> triangles,
-                              std::vector<std::array<int, 2>> lines, double keepUntil);
+                              const std::vector<std::array<int, 3>>& triangles,
+                              const std::vector<std::array<int, 2>>& lines, double keepUntil);
+  /// The cell sets "membranes" (Triangle, /mesh/triangles) and "cables" (Line, /mesh/lines) of plain
+  /// connectivity, as the membrane and cable kinds write them (for callers without a Model: tests, tools).
+  static std::vector<CellSet> surfaceAndLines(const std::vector<std::array<int, 3>>& triangles,
+                                              const std::vector<std::array<int, 2>>& lines);
   ~ResultsWriter();
   ResultsWriter(ResultsWriter&&) noexcept;
   ResultsWriter& operator=(ResultsWriter&&) noexcept;

@@ -10,15 +10,13 @@ SceneFrames::SceneFrames(const Model& model, const Constraints& constraints,
                          std::optional<double> keepUntil)
     : model_(model), constraints_(constraints), fields_(fields) {
   const Model& m = model_;
-  std::vector<std::array<int, 3>> tris(m.membranes.count);
-  for (int e = 0; e < m.membranes.count; ++e)
-    tris[e] = {m.membranes.conn[3 * e], m.membranes.conn[3 * e + 1], m.membranes.conn[3 * e + 2]};
-  std::vector<std::array<int, 2>> lines(m.cables.count);
-  for (int e = 0; e < m.cables.count; ++e) lines[e] = {m.cables.conn[2 * e], m.cables.conn[2 * e + 1]};
-  writer_ = keepUntil
-                ? std::make_unique<ResultsWriter>(ResultsWriter::append(file, m.nodes.count, std::move(tris),
-                                                                        std::move(lines), *keepUntil))
-                : std::make_unique<ResultsWriter>(file, m.nodes.count, std::move(tris), std::move(lines));
+  // Every element kind's cells, in registry order.
+  std::vector<CellSet> cells;
+  for (const ElementKind* kind : elementKinds())
+    if (std::optional<CellSet> s = kind->outputCells(m)) cells.push_back(std::move(*s));
+  writer_ = keepUntil ? std::make_unique<ResultsWriter>(
+                            ResultsWriter::append(file, m.nodes.count, std::move(cells), *keepUntil))
+                      : std::make_unique<ResultsWriter>(file, m.nodes.count, std::move(cells));
 }
 
 void SceneFrames::write(double time, long step) {

@@ -31,11 +31,20 @@ struct PointMassMaterial {
   double mass = 0;  ///< mass per node [kg]
 };
 
+/// A material of an element kind without a list of its own in the table: its named numbers as the scene gave
+/// them (e.g. a bar's young, area, density); the kind's build reads and checks them.
+struct KindMaterial {
+  std::string name;
+  std::map<std::string, double> values;
+};
+
 /// The materials of a scene, by element kind (what the material types' readers fill, material/MaterialTypes).
 struct MaterialTable {
   std::vector<MembraneMaterial> membrane;
   std::vector<CableMaterial> cable;
   std::vector<PointMassMaterial> pointMass;
+  /// The materials of every other element kind, by kind name (a new kind needs no list here).
+  std::map<std::string, std::vector<KindMaterial>> other;
   /// element kind → material name → index in that kind's list
   std::map<std::string, std::map<std::string, int>> index;
 };

@@ -90,8 +90,9 @@ struct Model {
   std::vector<MeshMap> meshes;
   /// The storage of every other element kind, owned generically: a kind creates its block in
   /// ElementKind::build (any copyable type, e.g. a structure-of-arrays struct with its materials) and finds
-  /// it again by its registry name through block<T>(). Membranes and cables keep their typed blocks above,
-  /// because surface effects, probes and the coupling interface read them directly.
+  /// it again by its registry name through block<T>(). Membranes and cables are built by their kinds too,
+  /// into the typed blocks above, because surface effects, probes and the coupling interface read them
+  /// directly.
   std::map<std::string, std::any> kindBlocks;
 
   /// The block of kind `kind`, or nullptr if the kind created none (or one of another type).
@@ -117,9 +118,10 @@ struct MeshInput {
   MeshData mesh;
   int membraneMaterial = -1;
   int cableMaterial = -1;
-  /// What the mesh carries for every other element kind, by kind name: each kind stores here what its mesh
-  /// keys say (ElementKind::readMeshKeys) and reads it back in ElementKind::build (e.g. the point masses'
-  /// (node, material) pairs).
+  /// What the mesh carries for every other element kind, by kind name: the kind's scene reader
+  /// (structure/scene/kinds) stores here what its mesh keys say, including the cells it claimed from the
+  /// mesh, and the kind reads it back in ElementKind::build (e.g. the point masses' (node, material) pairs,
+  /// the bars' lines).
   std::map<std::string, std::any> kindInputs;
 };
 

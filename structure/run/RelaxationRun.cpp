@@ -63,11 +63,9 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   RunResult result;
   if (!opt.quiet) {
     printSceneLine(scene);
-    fmt::print(
-        "model  {} nodes, {} membrane triangles, {} cables; dynamic relaxation {} (λ = {:.3g}), ε = {:.3g}, "
-        "{} increment(s)\n",
-        N.count, model.membranes.count, model.cables.count, scene.solver.method,
-        rs.lambda > 0 ? rs.lambda : defaultLambda(rs), rs.tolerance, rs.increments);
+    fmt::print("model  {}; dynamic relaxation {} (λ = {:.3g}), ε = {:.3g}, {} increment(s)\n",
+               modelCounts(model), scene.solver.method, rs.lambda > 0 ? rs.lambda : defaultLambda(rs),
+               rs.tolerance, rs.increments);
     std::fflush(stdout);
   }
   requireSomethingToRelax(scene);
@@ -147,8 +145,7 @@ RunResult runRelaxation(Scene& scene, const RunOptions& opt) {
   st["seconds_per_iteration"] = r.iterations > 0 ? wall / double(r.iterations) : 0.0;
   st["nodes"] = N.count;
   st["dof"] = 3 * N.count;
-  st["membrane_elements"] = model.membranes.count;
-  st["cable_elements"] = model.cables.count;
+  addElementKindStats(model, N.x.data(), st);
   st["strain_energy"] = r.history.empty() ? 0.0 : r.history.back().strain;
   st["element_updates_per_second"] =
       wall > 0 ? double(model.membranes.count + model.cables.count) * double(r.iterations) / wall : 0.0;

@@ -7,9 +7,33 @@
 #include <exception>
 #include <fstream>
 
+#include "structure/elements/ElementKind.hpp"
 #include "structure/io/StateFile.hpp"
 
 namespace fsi::structure {
+
+std::string modelCounts(const Model& model) {
+  std::string line = fmt::format("{} nodes", model.nodes.count);
+  for (const ElementKind* kind : elementKinds()) {
+    const int n = kind->count(model);
+    if (n > 0) line += fmt::format(", {} {}", n, kind->label());
+  }
+  return line;
+}
+
+void addElementKindStats(const Model& model, const double* x, nlohmann::json& stats) {
+  nlohmann::json kinds = nlohmann::json::object();
+  for (const ElementKind* kind : elementKinds()) {
+    const int n = kind->count(model);
+    stats[kind->name() + "_elements"] = n;
+    if (n == 0) continue;
+    nlohmann::json k;
+    k["count"] = n;
+    for (const auto& [name, value] : kind->report(model, x)) k[name] = value;
+    kinds[kind->name()] = std::move(k);
+  }
+  stats["element_kinds"] = std::move(kinds);
+}
 
 std::string signalName(int signal) {
   switch (signal) {

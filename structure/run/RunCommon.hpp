@@ -29,6 +29,14 @@ std::string signalName(int signal);
 /// "scene FILE  (title)", the first line of every run on the terminal.
 void printSceneLine(const Scene& scene);
 
+/// "1200 nodes, 2000 membrane triangles, 40 cables, 6 bars": the nodes and every element kind the model has,
+/// for the run log's model line.
+std::string modelCounts(const Model& model);
+
+/// Every element kind in summary.json: `<kind>_elements` (its count) for each, and under `element_kinds`
+/// the count and the kind's report (ElementKind::report at configuration x) of each kind the model has.
+void addElementKindStats(const Model& model, const double* x, nlohmann::json& stats);
+
 /// The wall clock of a run and the throttle of its progress lines.
 class RunClock {
  public:

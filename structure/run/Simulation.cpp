@@ -53,8 +53,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
 
   if (!opt.quiet) {
     printSceneLine(scene);
-    fmt::print("model  {} nodes, {} membrane triangles, {} cables; effects: ", N.count, model.membranes.count,
-               model.cables.count);
+    fmt::print("model  {}; effects: ", modelCounts(model));
     for (std::size_t i = 0; i < scene.enabledEffects.size(); ++i)
       fmt::print("{}{}", i ? ", " : "", scene.enabledEffects[i]);
     fmt::print("\n");
@@ -206,8 +205,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
   st["wall_seconds"] = wall;
   st["element_updates_per_second"] = wall > 0 ? double(elements) * double(stepsRun) / wall : 0.0;
   st["nodes"] = N.count;
-  st["membrane_elements"] = model.membranes.count;
-  st["cable_elements"] = model.cables.count;
+  addElementKindStats(model, N.x.data(), st);
   st["kinetic_energy"] = E.kinetic;
   st["strain_energy"] = E.strain;
   st["external_work"] = E.externalWork;

@@ -46,6 +46,30 @@ int readPointMass(const YamlMap& entry, const std::string& name, MaterialTable& 
   return int(table.pointMass.size()) - 1;
 }
 
+// A bar material (`type: bar`, the `bar` element kind): a list of its own in MaterialTable::other["bar"]
+// (the kind's build reads the values by name), the keys and ranges in its schema section.
+const SchemaSection& barMaterialKeys() {
+  static const SchemaSection s{
+      "materials.NAME (type: bar)",
+      "a 2-node linear elastic bar: tension and compression (`bars:` of a mesh)",
+      {{"type", KeyType::Choice, "", "", "required", {}, {}, {"bar"}, "the material type"},
+       {"young", KeyType::Number, "Pa", "", "required", KeyBound{0, false}, {}, {}, "Young's modulus E"},
+       {"area", KeyType::Number, "m²", "", "required", KeyBound{0, false}, {}, {}, "cross-section A"},
+       {"density", KeyType::Number, "kg/m³", "", "required", KeyBound{0, false}, {}, {}, "mass density ρ"}}};
+  return s;
+}
+
+int readBar(const YamlMap& entry, const std::string& name, MaterialTable& table) {
+  const SchemaMap m(entry, barMaterialKeys());
+  KindMaterial km;
+  km.name = name;
+  for (const char* key : {"young", "area", "density"}) km.values[key] = m.number(key);
+  m.finish();
+  auto& list = table.other["bar"];
+  list.push_back(km);
+  return int(list.size()) - 1;
+}
+
 }  // namespace
 
 const std::vector<MaterialType>& materialTypes() {
@@ -54,6 +78,7 @@ const std::vector<MaterialType>& materialTypes() {
       {"membrane", "membrane", &membraneMaterialKeys(), readMembrane},
       {"cable", "cable", &cableMaterialKeys(), readCable},
       {"point_mass", "point_mass", &pointMassMaterialKeys(), readPointMass},
+      {"bar", "bar", &barMaterialKeys(), readBar},
   };
   return types;
 }

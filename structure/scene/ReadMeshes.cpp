@@ -6,13 +6,14 @@
 #include "structure/scene/MeshSources.hpp"
 #include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/SceneSpec.hpp"
+#include "structure/scene/kinds/KindReaders.hpp"
 
 namespace fsi::structure {
 
 std::vector<MeshSpec> readMeshes(const YamlMap& top, const MaterialTable& materials,
                                  const std::filesystem::path& dir) {
   // The valid keys of a mesh entry: where the mesh comes from, then every element kind's own (its material
-  // references), in registry order (SceneSections.cpp).
+  // references), in the order of the kinds' scene readers (scene/kinds, SceneSections.cpp).
   const std::vector<std::string> validKeys = meshEntrySchema().names();
   std::vector<MeshSpec> out;
   YamlMap meshes = top.map("meshes");
@@ -27,9 +28,15 @@ std::vector<MeshSpec> readMeshes(const YamlMap& top, const MaterialTable& materi
     std::string origin = m.has("file") ? (dir / m.string("file")).string() + " (" +
                                              locate(m.file(), m.node(), "meshes." + name) + ")"
                                        : locate(m.file(), m.node(), "meshes." + name);
-    for (const ElementKind* kind : elementKinds()) kind->readMeshKeys(m, materials, in);
+    // The kinds claim their cells first; what no kind claimed stays the defaults' (triangles: membranes,
+    // lines: cables).
+    for (const KindReader& r : kindReaders())
+      if (r.claim) r.claim(m, materials, in);
+    for (const KindReader& r : kindReaders())
+      if (r.read) r.read(m, materials, in);
     m.finish(validKeys);
-    for (const ElementKind* kind : elementKinds()) kind->checkMeshInput(m, in);
+    for (const KindReader& r : kindReaders())
+      if (r.check) r.check(m, in);
     out.push_back({std::move(in), name, std::move(origin)});
   }
   return out;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "structure/elements/ElementKind.hpp"
 #include "structure/integrate/CentralDifference.hpp"
 #include "structure/integrate/DynamicRelaxation.hpp"
 
@@ -36,9 +37,15 @@ struct OutputControl {
   std::set<std::string> fields;
 };
 
+/// The valid `output.fields`: the node fields, then every element kind's own (ElementKind::outputFields, in
+/// registry order).
 inline const std::vector<std::string>& allOutputFields() {
-  static const std::vector<std::string> f{"displacement",     "velocity",      "residual",   "stress",
-                                          "principal_stress", "wrinkle_state", "cable_force"};
+  static const std::vector<std::string> f = [] {
+    std::vector<std::string> all{"displacement", "velocity", "residual"};
+    for (const ElementKind* kind : elementKinds())
+      for (const std::string& name : kind->outputFields()) all.push_back(name);
+    return all;
+  }();
   return f;
 }
 

@@ -11,6 +11,7 @@
 #include "structure/scene/ReadCoupling.hpp"
 #include "structure/scene/ReadTimeFunction.hpp"
 #include "structure/scene/SceneSchema.hpp"
+#include "structure/scene/kinds/KindReaders.hpp"
 #include "structure/scene/effects/EffectKinds.hpp"
 #include "structure/scene/probes/ReadProbes.hpp"
 
@@ -84,10 +85,10 @@ const SchemaSection& topLevelSchema() {
 }
 
 const SchemaSection& meshEntrySchema() {
-  // Where the mesh comes from, then every element kind's own keys (its material references), in registry
-  // order. The kinds' keys are listed by name only (type `see text`): each kind reads and checks them itself
-  // (ElementKind::readMeshKeys). A kind whose keys get a scene-level reader with its own SchemaSection adds
-  // its entries here in place of the names (see the loop below).
+  // Where the mesh comes from, then every element kind's own keys (its cells and material references), in
+  // the order of the kinds' scene readers (scene/kinds). They are listed by name only (type `see text`):
+  // each reader reads and checks them (KindReader::claim/read/check). A reader that gets its own
+  // SchemaSection adds its entries here in place of the names (see the loop below).
   static const SchemaSection s = [] {
     SchemaSection m{"meshes.NAME",
                     "one mesh: from a Gmsh file or a generator, with its element kinds' materials",
@@ -109,8 +110,8 @@ const SchemaSection& meshEntrySchema() {
                       {},
                       {},
                       "a built-in parametric mesh: `type:` and its keys"}}};
-    for (const ElementKind* kind : elementKinds())
-      for (const std::string& key : kind->meshKeys())
+    for (const KindReader& r : kindReaders())
+      for (const std::string& key : r.keys)
         m.keys.push_back(
             {key,
              KeyType::Any,
@@ -120,7 +121,7 @@ const SchemaSection& meshEntrySchema() {
              {},
              {},
              {},
-             fmt::format("read by the element kind '{}' (docs/SCENES.md, meshes)", kind->name())});
+             fmt::format("read by the element kind '{}' (docs/SCENES.md, meshes)", r.kind)});
     return m;
   }();
   return s;

@@ -45,21 +45,9 @@ STRUCTURE_LAYERS = [
     "run",  # Simulation, the run loops, stop reasons, diagnosis, summaries
 ]
 
-# Known violations, (including file, included path) -> reason; each one is issue 36 item 2: to be removed.
+# Known violations, (including file, included path) -> reason (none left: issue 36 item 2 removed the last).
 # The check fails on any violation not listed here, and on an entry that no longer matches an include.
-_KIND_READS_YAML = ("an element kind reads its own scene keys (ElementKind::readMeshKeys/checkMeshInput take a "
-                    "YamlMap; material references through scene/ReadMaterials); to go when what a kind computes "
-                    "is split from how a scene spells it (a scene-level reader per kind): "
-                    "issue 36 item 2: to be removed")
 ALLOWED = {
-    ("structure/elements/CableElement.cpp", "structure/scene/ReadMaterials.hpp"): _KIND_READS_YAML,
-    ("structure/elements/CableElement.cpp", "structure/scene/YamlAccess.hpp"): _KIND_READS_YAML,
-    ("structure/elements/MembraneElement.cpp", "structure/scene/ReadMaterials.hpp"): _KIND_READS_YAML,
-    ("structure/elements/MembraneElement.cpp", "structure/scene/YamlAccess.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/JoinNames.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/NearestName.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/ReadMaterials.hpp"): _KIND_READS_YAML,
-    ("structure/elements/PointMassElement.cpp", "structure/scene/YamlAccess.hpp"): _KIND_READS_YAML,
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"((structure|flight|coupling|adapter|apps)/[^"]+)"')

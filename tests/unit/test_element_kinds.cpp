@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include "structure/scene/Generators.hpp"
 #include "structure/scene/MaterialTypes.hpp"
 #include "structure/scene/Scene.hpp"
+#include "structure/scene/kinds/KindReaders.hpp"
 
 using namespace fsi::structure;
 using fsi::test::sceneError;
@@ -25,7 +27,7 @@ TEST(ElementKinds, RegistryNamesAreUniqueAndFindable) {
     EXPECT_TRUE(names.insert(k->name()).second) << k->name();
     EXPECT_EQ(findElementKind(k->name()), k);
   }
-  EXPECT_EQ(names, (std::set<std::string>{"membrane", "cable", "point_mass"}));
+  EXPECT_EQ(names, (std::set<std::string>{"membrane", "cable", "point_mass", "bar"}));
   EXPECT_EQ(findElementKind("membrain"), nullptr);
 }
 
@@ -142,16 +144,23 @@ time: {end: 1.0e-3}
 
 // The scene's materials block reads through the registry: its types and each type's keys are the valid ones,
 // with "did you mean" and located messages.
-// Each kind declares the keys of a scene's mesh entry it reads; the mesh reader accepts exactly those (plus
-// where the mesh comes from), so a misspelt key is answered from the registry.
+// Each kind's scene reader (structure/scene/kinds) declares the keys of a scene's mesh entry it reads; the
+// mesh reader accepts exactly those (plus where the mesh comes from), so a misspelt key is answered from the
+// registry. Every reader reads for a registered kind, and every kind has a reader.
 TEST(ElementKinds, DeclareTheMeshKeysTheyRead) {
-  EXPECT_EQ(findElementKind("membrane")->meshKeys(), std::vector<std::string>{"material"});
-  EXPECT_EQ(findElementKind("cable")->meshKeys(),
-            (std::vector<std::string>{"cable_material", "cables", "edge_cables"}));
-  EXPECT_EQ(findElementKind("point_mass")->meshKeys(), std::vector<std::string>{"point_masses"});
+  std::map<std::string, std::vector<std::string>> byKind;
+  for (const KindReader& r : kindReaders()) {
+    EXPECT_NE(findElementKind(r.kind), nullptr) << r.kind;
+    byKind[r.kind] = r.keys;
+  }
+  EXPECT_EQ(byKind.size(), elementKinds().size());
+  EXPECT_EQ(byKind["membrane"], std::vector<std::string>{"material"});
+  EXPECT_EQ(byKind["cable"], (std::vector<std::string>{"cable_material", "cables", "edge_cables"}));
+  EXPECT_EQ(byKind["point_mass"], std::vector<std::string>{"point_masses"});
+  EXPECT_EQ(byKind["bar"], (std::vector<std::string>{"bar_material", "bars"}));
   std::set<std::string> keys;
-  for (const ElementKind* k : elementKinds())
-    for (const std::string& key : k->meshKeys()) EXPECT_TRUE(keys.insert(key).second) << key;
+  for (const KindReader& r : kindReaders())
+    for (const std::string& key : r.keys) EXPECT_TRUE(keys.insert(key).second) << key;
   const char* yaml = R"(materials:
   line: {type: cable, young: 1.0e9, area: 1.0e-4, density: 1000}
   payload: {type: point_mass, mass: 5}

@@ -9,6 +9,7 @@
 #include "structure/elements/MembraneForces.hpp"
 #include "structure/elements/MembraneKinematics.hpp"
 #include "structure/model/Error.hpp"
+#include "structure/model/MaterialKeys.hpp"
 #include "structure/model/PositiveValue.hpp"
 
 namespace fsi::structure {

@@ -247,7 +247,8 @@ std::vector<std::array<double, 3>> readPoints(const YamlMap& g, const std::strin
   return out;
 }
 
-GeneratorKind parafoilGenerator();  // structure/parafoil/ParafoilScene.cpp
+GeneratorKind parafoilGenerator();     // structure/parafoil/ParafoilScene.cpp
+GeneratorKind roundCanopyGenerator();  // structure/roundcanopy/RoundCanopyScene.cpp
 
 const std::vector<GeneratorKind>& generatorKinds() {
   // Register a new generator here: a row, or for a generator in a file of its own `myShapeGenerator(),` (with
@@ -263,6 +264,7 @@ const std::vector<GeneratorKind>& generatorKinds() {
       {"strip", stripSchema().names(), stripSchema().description, stripFrom, &stripSchema()},
       {"pillow", pillowSchema().names(), pillowSchema().description, pillowFrom, &pillowSchema()},
       parafoilGenerator(),
+      roundCanopyGenerator(),
   };
   return kinds;
 }

@@ -15,6 +15,7 @@
 
 #include "structure/model/Error.hpp"
 #include "structure/roundcanopy/RoundCanopyGeometry.hpp"
+#include "structure/scene/Scene.hpp"
 
 namespace fsi::structure::roundcanopy {
 namespace {
@@ -308,6 +309,58 @@ TEST(RoundCanopy, ImpossibleDesignsNameTheParameter) {
   q.goreDivisions = 100;
   q.radialDivisions = 100;
   fails(q, "radial_divisions");
+}
+
+}  // namespace
+}  // namespace fsi::structure::roundcanopy
+
+namespace fsi::structure::roundcanopy {
+namespace {
+
+constexpr const char* kScene = R"(materials:
+  cloth: {type: membrane, young: 5.0e8, poisson: 0.3, thickness: 1.0e-4, density: 1100}
+  tape: {type: cable, young: 2.0e9, area: 2.0e-6, density: 1100}
+meshes:
+  canopy:
+    generator: {type: round_canopy, shape: conical, nominal_diameter: 2.0, gores: 12, vent_diameter: 0.2, cone_angle: 25, riser_length: 0.5}
+    material: cloth
+    cable_material: tape
+constraints:
+  - {nodes: canopy/payload, fix: all}
+time: {end: 0.001}
+)";
+
+std::string sceneError(const std::string& from, const std::string& to) {
+  std::string text = kScene;
+  text.replace(text.find(from), from.size(), to);
+  try {
+    fsi::structure::loadSceneFromString(text, "round.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(RoundCanopyScene, TheGeneratorBuildsTheCanopyOfAScene) {
+  const auto scene = fsi::structure::loadSceneFromString(kScene, "round.yaml");
+  const auto& m = scene.model->meshes.at(0).source;
+  EXPECT_EQ(m.triangles.size(), 12u * 2 * 12 * 2);
+  EXPECT_EQ(m.nodeGroups.at("payload").size(), 1u);
+  EXPECT_EQ(scene.model->membranes.count, 576);
+}
+
+TEST(RoundCanopyScene, ErrorsAreLocatedAtTheKey) {
+  // Out of a key's range: at the key, from the schema.
+  EXPECT_NE(sceneError("gores: 12", "gores: 2").find("round.yaml:6:"), std::string::npos);
+  EXPECT_NE(sceneError("gores: 12", "gores: 2").find("gores"), std::string::npos);
+  // A key that cannot take effect.
+  EXPECT_NE(sceneError("shape: conical", "shape: flat").find("cone_angle"), std::string::npos);
+  // Depending on other keys: the design's message at the entry.
+  const std::string vent = sceneError("vent_diameter: 0.2", "vent_diameter: 1.9");
+  EXPECT_NE(vent.find("round.yaml:6:"), std::string::npos) << vent;
+  EXPECT_NE(vent.find("parameter 'vent_diameter'"), std::string::npos) << vent;
+  // Misspelt key: did you mean.
+  EXPECT_NE(sceneError("gores: 12", "gore: 12").find("gores"), std::string::npos);
 }
 
 }  // namespace

@@ -31,6 +31,14 @@ struct KeyBound {
   bool inclusive = true;
 };
 
+/// Bounds as the tables write them: incl(0) is [0, …, excl(0) is (0, ….
+inline KeyBound incl(double v) {
+  return {v, true};
+}
+inline KeyBound excl(double v) {
+  return {v, false};
+}
+
 /// An Integer key without an upper bound is read into an `int` (at most 2147483647, so that it never wraps);
 /// this upper bound lets it take any `long` instead (shown as no upper bound).
 inline constexpr KeyBound kAnyLong{9223372036854775807.0, true};

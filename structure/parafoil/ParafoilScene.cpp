@@ -7,16 +7,7 @@
 
 namespace fsi::structure::parafoil {
 
-namespace {
-
-KeyBound incl(double v) {
-  return {v, true};
-}
-KeyBound excl(double v) {
-  return {v, false};
-}
-
-}  // namespace
+namespace {}  // namespace
 
 const SchemaSection& parafoilSchema() {
   // The one list of the generator's keys: the reader below reads each through it, docs/SCENES.md's key

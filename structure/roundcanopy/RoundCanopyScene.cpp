@@ -4,16 +4,7 @@
 
 namespace fsi::structure::roundcanopy {
 
-namespace {
-
-KeyBound incl(double v) {
-  return {v, true};
-}
-KeyBound excl(double v) {
-  return {v, false};
-}
-
-}  // namespace
+namespace {}  // namespace
 
 const SchemaSection& roundCanopySchema() {
   // Ranges that depend on other keys (the vent at most half the canopy, lines long enough to reach the axis,

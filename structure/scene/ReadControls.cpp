@@ -15,9 +15,6 @@ namespace fsi::structure {
 
 namespace {
 
-KeyBound incl(double v) {
-  return {v, true};
-}
 constexpr KeyBound kAboveZero{0, false};
 constexpr double kIntMax = std::numeric_limits<int>::max();
 

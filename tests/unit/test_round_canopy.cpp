@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "TestScenes.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/roundcanopy/RoundCanopyGeometry.hpp"
 #include "structure/scene/Scene.hpp"
@@ -331,14 +332,7 @@ time: {end: 0.001}
 )";
 
 std::string sceneError(const std::string& from, const std::string& to) {
-  std::string text = kScene;
-  text.replace(text.find(from), from.size(), to);
-  try {
-    fsi::structure::loadSceneFromString(text, "round.yaml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return fsi::test::sceneError(fsi::test::replaced(kScene, from, to), "round.yaml");
 }
 
 TEST(RoundCanopyScene, TheGeneratorBuildsTheCanopyOfAScene) {

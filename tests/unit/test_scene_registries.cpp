@@ -21,22 +21,11 @@ namespace {
 const std::string kTime = "time: {end: 0.01}\n";  // line 9 after the 8 lines of drumScene
 
 std::string errorOf(const std::string& yaml) {
-  try {
-    loadSceneFromString(yaml, "case.yaml");
-  } catch (const fsi::InputError& e) {
-    return e.what();
-  }
-  return "";
+  return fsi::test::sceneError(yaml, "case.yaml");
 }
 
 bool has(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
-}
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto p = s.find(from);
-  EXPECT_NE(p, std::string::npos) << from;
-  return s.replace(p, from.size(), to);
 }
 
 }  // namespace
@@ -78,11 +67,11 @@ TEST(SceneSchema, ProbeTypesAndKeysComeFromTheRegistry) {
 }
 
 TEST(SceneSchema, GeneratorTypesAndKeysComeFromTheRegistry) {
-  std::string e = errorOf(replace(drumScene(kTime), "type: rectangle", "type: rectangel"));
+  std::string e = errorOf(fsi::test::replaced(drumScene(kTime), "type: rectangle", "type: rectangel"));
   EXPECT_TRUE(has(e, "meshes.sheet.generator.type") && has(e, "did you mean 'rectangle'")) << e;
   for (const GeneratorKind& k : generatorKinds()) EXPECT_TRUE(has(e, k.name)) << k.name << ": " << e;
 
-  e = errorOf(replace(drumScene(kTime), "pattern: cross", "pattern: cross, centre: [0, 0, 0]"));
+  e = errorOf(fsi::test::replaced(drumScene(kTime), "pattern: cross", "pattern: cross, centre: [0, 0, 0]"));
   EXPECT_TRUE(has(e, "meshes.sheet.generator.centre: unknown key 'centre' (did you mean 'center'?)")) << e;
 }
 

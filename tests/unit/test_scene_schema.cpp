@@ -28,22 +28,11 @@ namespace {
 const std::string kTime = "time: {end: 0.01}\n";  // line 9 after the 8 lines of drumScene
 
 std::string errorOf(const std::string& yaml) {
-  try {
-    loadSceneFromString(yaml, "case.yaml");
-  } catch (const fsi::InputError& e) {
-    return e.what();
-  }
-  return "";
+  return fsi::test::sceneError(yaml, "case.yaml");
 }
 
 bool has(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
-}
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto p = s.find(from);
-  EXPECT_NE(p, std::string::npos) << from;
-  return s.replace(p, from.size(), to);
 }
 
 std::string scenesDoc() {
@@ -75,7 +64,7 @@ std::string wingScene(const std::string& extra) {
 
 TEST(SceneSchemaRead, RangeErrorsComeFromTheEntry) {
   // The message is the entry's (its range text), at the key's line and column.
-  std::string e = errorOf(replace(drumScene(kTime), "poisson: 0.3", "poisson: 0.6"));
+  std::string e = errorOf(fsi::test::replaced(drumScene(kTime), "poisson: 0.3", "poisson: 0.6"));
   EXPECT_TRUE(has(e, "case.yaml:2:") && has(e, "materials.film.poisson: is 0.6; valid: " +
                                                    membraneMaterialKeys().key("poisson").rangeText()))
       << e;
@@ -93,7 +82,7 @@ TEST(SceneSchemaRead, RangeErrorsComeFromTheEntry) {
   EXPECT_TRUE(has(e, "solver.threads: 2000 is out of range; expected an integer from 1 to 1024")) << e;
 
   // A positive quantity under the one rule, from the entry of `density`.
-  e = errorOf(replace(drumScene(kTime), "density: 1000", "density: 1.0e-320"));
+  e = errorOf(fsi::test::replaced(drumScene(kTime), "density: 1000", "density: 1.0e-320"));
   EXPECT_TRUE(has(e, "materials.film.density: must be > 0 and at least 2.2e-308")) << e;
 
   // A list's entries each under the range.
@@ -116,7 +105,7 @@ TEST(SceneSchemaRead, MaterialCheckedOnceWithOneMessage) {
 }
 
 TEST(SceneSchemaRead, WrongTypeIsNamed) {
-  std::string e = errorOf(replace(drumScene(kTime), "young: 1.0e8", "young: \"1.0e8\""));
+  std::string e = errorOf(fsi::test::replaced(drumScene(kTime), "young: 1.0e8", "young: \"1.0e8\""));
   EXPECT_TRUE(has(e, "materials.film.young: expected a number, got the string '1.0e8'")) << e;
   e = errorOf(drumScene(kTime + "solver: {threads: 1.5}\n"));
   EXPECT_TRUE(has(e, "case.yaml:10:") && has(e, "solver.threads: expected an integer, got 1.5")) << e;
@@ -132,7 +121,7 @@ TEST(SceneSchemaRead, UnknownKeyGetsDidYouMeanFromTheSection) {
   EXPECT_TRUE(has(e, "case.yaml:6:") && has(e, "unknown key 'spn' (did you mean 'span'?)")) << e;
   for (const std::string& k : parafoil::parafoilSchema().names()) EXPECT_TRUE(has(e, k)) << k << ": " << e;
 
-  e = errorOf(replace(drumScene(kTime), "poisson: 0.3", "poisson: 0.3, wrinklng: false"));
+  e = errorOf(fsi::test::replaced(drumScene(kTime), "poisson: 0.3", "poisson: 0.3, wrinklng: false"));
   EXPECT_TRUE(has(e, "materials.film.wrinklng: unknown key 'wrinklng' (did you mean 'wrinkling'?)")) << e;
 
   e = errorOf(drumScene("time: {end: 0.01, monitor_evry: 10}\n"));
@@ -238,8 +227,9 @@ TEST(SceneSchemaMeshErrors, LocatedAtTheMeshByIndex) {
   std::ofstream(dir / "bad.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n"
                                     "3 0 1 0\n4 1 0 0\n$EndNodes\n$Elements\n2\n1 2 2 1 1 1 2 3\n"
                                     "2 2 2 1 1 1 2 4\n$EndElements\n";
-  const std::string yaml = replace(drumScene(kTime), "    material: film\n",
-                                   "    material: film\n  sheet2:\n    file: bad.msh\n    material: film\n");
+  const std::string yaml =
+      fsi::test::replaced(drumScene(kTime), "    material: film\n",
+                          "    material: film\n  sheet2:\n    file: bad.msh\n    material: film\n");
   std::ofstream(dir / "case.yaml") << yaml;
   try {
     loadScene(dir / "case.yaml");

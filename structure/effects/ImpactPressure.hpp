@@ -16,9 +16,15 @@
 //                       Δp₀).
 //
 // The reduction is this project's model, stated in docs/ROUND_CANOPY.md with its assumptions; the impact law
-// is the classical one. Pure functions here; the effect that applies them per triangle is next to them.
+// is the classical one. The pure functions, and the effect that applies them per triangle
+// (ImpactPressureLoad).
 
 #include <array>
+#include <string>
+#include <vector>
+
+#include "structure/effects/AerodynamicDrag.hpp"
+#include "structure/effects/Effect.hpp"
 
 namespace fsi::structure {
 
@@ -42,5 +48,26 @@ ImpactLoad porousReduction(double dp0, double vn, double density, const ClothPer
 /// The load on cloth with unit normal `normal` in the relative wind `wind` [m/s].
 ImpactLoad impactPressure(const std::array<double, 3>& normal, const std::array<double, 3>& wind,
                           double density, double cpMax, double exponent, const ClothPermeability& cloth);
+
+/// The impact pressure on triangles in a uniform wind U·f(t) (AirStream), relative to each triangle's
+/// velocity (the mean of its nodes'): a follower load, p·A·n/3 to each node on the CURRENT area and normal, p
+/// from impactPressure() at the triangle's normal. Scaled by the load factor (incremental loading).
+class ImpactPressureLoad final : public Effect {
+ public:
+  /// triangleConn: model node indices, 3 per triangle.
+  ImpactPressureLoad(std::string label, std::vector<int> triangleConn, AirStream air, double cpMax,
+                     double exponent, ClothPermeability cloth);
+  std::string name() const override { return "impact_pressure:" + label_; }
+  void addForces(ForceContext& ctx) const override { addRange(ctx, 0, int(conn_.size() / 3)); }
+  Connectivity connectivity() const override;
+  void addRange(ForceContext& ctx, int begin, int end) const override;
+
+ private:
+  std::string label_;
+  std::vector<int> conn_;
+  AirStream air_;
+  double cpMax_, exponent_;
+  ClothPermeability cloth_;
+};
 
 }  // namespace fsi::structure

@@ -79,3 +79,68 @@ TEST(ImpactPressure, PorousLimitsAndTrend) {
 
 }  // namespace
 }  // namespace fsi::structure
+
+namespace fsi::structure {
+namespace {
+
+// A unit square of cloth in z = 0 (two triangles, normals +z), its nodes at rest or moving with velocity u.
+struct Square {
+  std::vector<double> x{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  std::vector<int> conn{0, 1, 2, 0, 2, 3};
+  std::vector<double> v = std::vector<double>(12, 0.0);
+  std::array<double, 3> force(const ImpactPressureLoad& load, double loadFactor = 1.0) const {
+    std::vector<double> f(12, 0.0), fint(12, 0.0);
+    ForceContext ctx;
+    ctx.x = x.data();
+    ctx.v = v.data();
+    ctx.fext = f.data();
+    ctx.fint = fint.data();
+    ctx.loadFactor = loadFactor;
+    load.addForces(ctx);
+    std::array<double, 3> sum{};
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) sum[k] += f[3 * i + k];
+    return sum;
+  }
+};
+
+AirStream wind(double wx, double wy, double wz) {
+  AirStream a;
+  a.wind = {wx, wy, wz};
+  a.density = kRho;
+  return a;
+}
+
+TEST(ImpactPressure, TheLoadOnASquareIsPressureTimesArea) {
+  const Square sq;
+  const ImpactPressureLoad facing("sq", sq.conn, wind(0, 0, 10), 0.9, 2.0, ClothPermeability{});
+  const auto f = sq.force(facing);
+  EXPECT_NEAR(f[2], 0.9 * 0.5 * kRho * 100 * 1.0, 1e-12) << "p A along the normal";
+  EXPECT_NEAR(f[0], 0.0, 1e-12);
+  EXPECT_NEAR(sq.force(facing, 0.5)[2], 0.5 * f[2], 1e-12) << "scaled by the load factor";
+  // The wind 60 deg off the normal: cos^2 = 1/4 of the stagnation pressure, still along the normal.
+  const ImpactPressureLoad oblique("sq", sq.conn, wind(0, 10 * std::sqrt(3.0) / 2, 5), 1.0, 2.0,
+                                   ClothPermeability{});
+  EXPECT_NEAR(sq.force(oblique)[2], 0.25 * 0.5 * kRho * 100, 1e-12);
+  EXPECT_NEAR(sq.force(oblique)[1], 0.0, 1e-12);
+  // Cloth moving with the wind feels nothing; from behind, nothing.
+  Square moving;
+  for (int i = 0; i < 4; ++i) moving.v[3 * i + 2] = 10;
+  EXPECT_NEAR(moving.force(facing)[2], 0.0, 1e-12);
+  const ImpactPressureLoad behind("sq", sq.conn, wind(0, 0, -10), 1.0, 2.0, ClothPermeability{});
+  EXPECT_EQ(sq.force(behind)[2], 0.0);
+  // Porous cloth carries the reduced pressure.
+  ClothPermeability cloth;
+  cloth.a = 2e6;
+  cloth.b = 50;
+  const ImpactLoad r = porousReduction(0.5 * kRho * 100, 10, kRho, cloth);
+  const ImpactPressureLoad porous("sq", sq.conn, wind(0, 0, 10), 1.0, 2.0, cloth);
+  EXPECT_NEAR(sq.force(porous)[2], r.pressure, 1e-10);
+  EXPECT_LT(r.pressure, 0.5 * kRho * 100);
+  // The connectivity the assembler threads over: two triangles of three nodes.
+  EXPECT_EQ(facing.connectivity().items, 2);
+  EXPECT_EQ(facing.connectivity().nodesPerItem, 3);
+}
+
+}  // namespace
+}  // namespace fsi::structure

@@ -17,6 +17,7 @@ EffectKind chordwisePressureEffect();  // PressureTableEffect.cpp
 EffectKind lineDragEffect();           // DragEffects.cpp
 EffectKind bodyDragEffect();           // DragEffects.cpp
 EffectKind bendingEffect();            // BendingEffect.cpp
+EffectKind impactPressureEffect();     // ImpactPressureEffect.cpp
 
 namespace {
 
@@ -25,7 +26,7 @@ std::vector<EffectKind>& table() {
   static std::vector<EffectKind> kinds{
       massDampingEffect(), stiffnessDampingEffect(), bulkViscosityEffect(),     gravityEffect(),
       pressureEffect(),    nodalForcesEffect(),      chordwisePressureEffect(), lineDragEffect(),
-      bodyDragEffect(),    bendingEffect()};
+      bodyDragEffect(),    bendingEffect(),          impactPressureEffect()};
   return kinds;
 }
 

@@ -21,6 +21,7 @@
 #include "structure/effects/PressureDistribution.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/ReadTimeFunction.hpp"
+#include "structure/scene/SceneSchema.hpp"
 
 namespace fsi::coupling {
 
@@ -29,9 +30,95 @@ using structure::YamlMap;
 
 namespace {
 
-const std::vector<std::string> kKeys{"triangles",        "file",       "field",     "quantity",
-                                     "dynamic_pressure", "scale",      "follower",  "function",
-                                     "tolerance",        "neighbours", "projection"};
+// The entry's keys (the structure's scene schema; the coupling library registers the effect and so declares
+// its section). Read by build() with its own messages (keys that depend on the file's kind or the quantity).
+const structure::SchemaSection& schema() {
+  using T = structure::KeyType;
+  using structure::excl;
+  using structure::incl;
+  static const structure::SchemaSection s{
+      "effects.pressure_field",
+      "outer-flow pressure (or Cp) from another code's solution (.vtk surface or .csv point cloud), mapped "
+      "onto triangles once at load (flow on the normal side; an entry or a list of them)",
+      {{"triangles", T::Selector, "", "", "required", {}, {}, {}, "the triangles"},
+       {"file",
+        T::String,
+        "",
+        "",
+        "required",
+        {},
+        {},
+        {},
+        "a legacy VTK surface (.vtk, field as POINT_DATA) or a point cloud (.csv: x, y, z, field), relative "
+        "to "
+        "the scene's folder"},
+       {"field", T::String, "", "", "p (cp with quantity: cp)", {}, {}, {}, "the file's field or column"},
+       {"quantity",
+        T::Choice,
+        "",
+        "pressure",
+        "",
+        {},
+        {},
+        {"pressure", "cp"},
+        "the field is a pressure in Pa, or a Cp (times dynamic_pressure)"},
+       {"dynamic_pressure",
+        T::Number,
+        "Pa",
+        "",
+        "required with quantity: cp (only then)",
+        excl(0),
+        {},
+        {},
+        "q for a Cp field"},
+       {"scale", T::Number, "-", "1", "", {}, {}, {}, "a factor on the mapped pressure"},
+       {"follower",
+        T::Boolean,
+        "",
+        "true",
+        "",
+        {},
+        {},
+        {},
+        "follow the current area and normal (false: a dead load on the reference geometry)"},
+       {"function",
+        T::Any,
+        "",
+        "",
+        "constant 1",
+        {},
+        {},
+        {},
+        "a time function f(t) (docs/SCENES.md, Time functions)"},
+       {"tolerance",
+        T::Number,
+        "m",
+        "",
+        "the triangles' mean edge length",
+        excl(0),
+        {},
+        {},
+        "the farthest a triangle may lie from the file's data (nothing is extrapolated)"},
+       {"neighbours",
+        T::Integer,
+        "",
+        "4",
+        "",
+        incl(1),
+        incl(64),
+        {},
+        "points of the cloud interpolated at each centroid (.csv only)"},
+       {"projection",
+        T::Choice,
+        "",
+        "conservative",
+        "",
+        {},
+        {},
+        {"conservative", "consistent"},
+        "the surface mapping (.vtk only)"}}};
+  return s;
+}
 
 // The triangles as an interface mesh over their own nodes (local numbering), in reference coordinates.
 InterfaceMesh localMesh(const structure::Model& model, const std::vector<int>& conn,
@@ -117,7 +204,7 @@ void build(const YamlMap& e, EffectContext& ctx) {
     if (ext != ".csv") e.failAt("neighbours", "only for a point cloud (.csv)");
     neighbours = int(e.integer("neighbours", {1, 64}));
   }
-  e.finish(kKeys);
+  e.finish(schema().names());
 
   const std::filesystem::path path = ctx.sceneDir / fileName;
   std::vector<double> values;
@@ -139,12 +226,13 @@ void build(const YamlMap& e, EffectContext& ctx) {
 structure::EffectKind pressureFieldEffect() {
   return {
       "pressure_field",
-      kKeys,
+      schema().names(),
       "outer-flow pressure (or Cp) from another code's solution, a .vtk surface (conservative projection) or "
       "a .csv point cloud, mapped onto triangles (flow on the normal side)",
       true,
       "",
-      build};
+      build,
+      &schema()};
 }
 
 }  // namespace fsi::coupling

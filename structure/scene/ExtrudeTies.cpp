@@ -74,13 +74,47 @@ std::vector<std::vector<int>> groupAcross(const Nodes& N, const std::vector<int>
 
 }  // namespace
 
+const SchemaSection& extrudeSchema() {
+  static const SchemaSection s{
+      "constraints[i].extrude",
+      "a 2D model: tie the nodes that coincide apart from their coordinate along a direction (with `nodes`)",
+      {{"direction",
+        KeyType::Vec3,
+        "-",
+        "",
+        "required",
+        {},
+        {},
+        {},
+        "the extrusion direction (finite, non-zero, need not be unit)"},
+       {"tolerance",
+        KeyType::Number,
+        "m",
+        "1e-9",
+        "",
+        incl(0),
+        {},
+        {},
+        "distance across the direction within which nodes form a tie group"},
+       {"hold",
+        KeyType::Boolean,
+        "",
+        "false",
+        "",
+        {},
+        {},
+        {},
+        "also hold the displacement along the direction at zero (plane strain)"}}};
+  return s;
+}
+
 ExtrudeRequest readExtrude(const YamlMap& entry, int index, std::vector<int> nodes) {
   YamlMap e = entry.map("extrude");
   ExtrudeRequest r{entry, e, index, std::move(nodes)};
   r.direction = e.vec3("direction");
   r.tolerance = e.number("tolerance", 1e-9);
   r.hold = e.boolean("hold", false);
-  e.finish({"direction", "tolerance", "hold"});
+  e.finish(extrudeSchema().names());
   entry.finish({"nodes", "extrude"});
   auto& d = r.direction;
   const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);

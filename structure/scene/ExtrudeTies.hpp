@@ -10,9 +10,13 @@
 
 #include "structure/integrate/Constraints.hpp"
 #include "structure/model/Model.hpp"
+#include "structure/model/SchemaKey.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
+
+/// The keys of `constraints[i].extrude` (SceneSchema).
+const SchemaSection& extrudeSchema();
 
 /// One `- {nodes: SEL, extrude: {direction: d, tolerance: 1e-9, hold: false}}` entry, read but not resolved.
 struct ExtrudeRequest {

@@ -1,18 +1,19 @@
 // The schema sections of the scene's top level and mesh entries, and the list of every section
 // (sceneSchema(), in the order of docs/SCENES.md's key reference).
-#include <fmt/format.h>
 
 #include "structure/elements/ElementKind.hpp"
 #include "structure/model/MaterialKeys.hpp"
 #include "structure/scene/BuildConstraints.hpp"
+#include "structure/scene/ExtrudeTies.hpp"
 #include "structure/scene/GeneratorKinds.hpp"
 #include "structure/scene/MaterialTypes.hpp"
 #include "structure/scene/ReadControls.hpp"
 #include "structure/scene/ReadCoupling.hpp"
 #include "structure/scene/ReadTimeFunction.hpp"
 #include "structure/scene/SceneSchema.hpp"
-#include "structure/scene/kinds/KindReaders.hpp"
+#include "structure/scene/SelectorSchema.hpp"
 #include "structure/scene/effects/EffectKinds.hpp"
+#include "structure/scene/kinds/KindReaders.hpp"
 #include "structure/scene/probes/ReadProbes.hpp"
 
 namespace fsi::structure {
@@ -86,9 +87,8 @@ const SchemaSection& topLevelSchema() {
 
 const SchemaSection& meshEntrySchema() {
   // Where the mesh comes from, then every element kind's own keys (its cells and material references), in
-  // the order of the kinds' scene readers (scene/kinds). They are listed by name only (type `see text`):
-  // each reader reads and checks them (KindReader::claim/read/check). A reader that gets its own
-  // SchemaSection adds its entries here in place of the names (see the loop below).
+  // the order of the kinds' scene readers (scene/kinds): each reader declares them in its section and reads
+  // and checks them (KindReader::claim/read/check).
   static const SchemaSection s = [] {
     SchemaSection m{"meshes.NAME",
                     "one mesh: from a Gmsh file or a generator, with its element kinds' materials",
@@ -111,17 +111,7 @@ const SchemaSection& meshEntrySchema() {
                       {},
                       "a built-in parametric mesh: `type:` and its keys"}}};
     for (const KindReader& r : kindReaders())
-      for (const std::string& key : r.keys)
-        m.keys.push_back(
-            {key,
-             KeyType::Any,
-             "",
-             "",
-             "",
-             {},
-             {},
-             {},
-             fmt::format("read by the element kind '{}' (docs/SCENES.md, meshes)", r.kind)});
+      for (const SceneKey& key : r.schema->keys) m.keys.push_back(key);
     return m;
   }();
   return s;
@@ -133,9 +123,15 @@ std::vector<const SchemaSection*> sceneSchema() {
   all.push_back(&meshEntrySchema());
   for (const GeneratorKind& g : generatorKinds())
     if (g.schema) all.push_back(g.schema);
+  all.push_back(&setsSchema());
+  all.push_back(&planeSelectorSchema());
+  all.push_back(&boxSelectorSchema());
+  all.push_back(&nearestSelectorSchema());
+  all.push_back(&idsSelectorSchema());
   all.push_back(&fixSchema());
   all.push_back(&symmetrySchema());
   all.push_back(&prescribeSchema());
+  all.push_back(&extrudeSchema());
   for (const EffectKind& e : effectKinds())
     if (e.schema) all.push_back(e.schema);
   all.push_back(&couplingSchema());

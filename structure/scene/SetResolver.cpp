@@ -8,6 +8,7 @@
 
 #include "structure/model/Error.hpp"
 #include "structure/scene/JoinNames.hpp"
+#include "structure/scene/SelectorSchema.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
 namespace fsi::structure {
@@ -210,7 +211,7 @@ std::vector<int> SetResolver::nodesRaw(const YAML::Node& sel, const std::string&
       for (int k = 0; k < 3; ++k) d += (N.X[3 * i + k] - pt[k]) * n[k] / len;
       if (std::abs(d) <= tol) out.push_back(i);
     }
-    m.finish({"plane", "tolerance", "among"});
+    m.finish(planeSelectorSchema().names());
   } else if (m.has("box")) {
     YamlMap b = m.map("box");
     const auto lo = b.vec3("min"), hi = b.vec3("max");
@@ -226,7 +227,7 @@ std::vector<int> SetResolver::nodesRaw(const YAML::Node& sel, const std::string&
       for (int k = 0; k < 3; ++k) in = in && N.X[3 * i + k] >= lo[k] && N.X[3 * i + k] <= hi[k];
       if (in) out.push_back(i);
     }
-    m.finish({"box", "among"});
+    m.finish(boxSelectorSchema().names());
   } else if (m.has("nearest")) {
     const auto p = m.vec3("nearest");
     std::vector<int> pool =
@@ -243,7 +244,7 @@ std::vector<int> SetResolver::nodesRaw(const YAML::Node& sel, const std::string&
       if (d < bd) bd = d, best = i;
     }
     if (best >= 0) out.push_back(best);
-    m.finish({"nearest", "among"});
+    m.finish(nearestSelectorSchema().names());
   } else if (m.has("ids")) {
     const std::string mesh = m.string("mesh");
     const int mi = meshIndex(mesh, m.node(), m.path());
@@ -256,7 +257,7 @@ std::vector<int> SetResolver::nodesRaw(const YAML::Node& sel, const std::string&
       if (it == byTag.end()) m.failAt("ids", fmt::format("mesh '{}' has no node {}", mesh, id));
       out.push_back(it->second);
     }
-    m.finish({"ids", "mesh"});
+    m.finish(idsSelectorSchema().names());
   } else {
     m.fail(
         "a node selector is a set or mesh name ('mesh/group'), a list of them, or a mapping with one of: "

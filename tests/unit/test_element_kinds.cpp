@@ -151,7 +151,7 @@ TEST(ElementKinds, DeclareTheMeshKeysTheyRead) {
   std::map<std::string, std::vector<std::string>> byKind;
   for (const KindReader& r : kindReaders()) {
     EXPECT_NE(findElementKind(r.kind), nullptr) << r.kind;
-    byKind[r.kind] = r.keys;
+    byKind[r.kind] = r.schema->names();
   }
   EXPECT_EQ(byKind.size(), elementKinds().size());
   EXPECT_EQ(byKind["membrane"], std::vector<std::string>{"material"});
@@ -160,7 +160,7 @@ TEST(ElementKinds, DeclareTheMeshKeysTheyRead) {
   EXPECT_EQ(byKind["bar"], (std::vector<std::string>{"bar_material", "bars"}));
   std::set<std::string> keys;
   for (const KindReader& r : kindReaders())
-    for (const std::string& key : r.keys) EXPECT_TRUE(keys.insert(key).second) << key;
+    for (const std::string& key : r.schema->names()) EXPECT_TRUE(keys.insert(key).second) << key;
   const char* yaml = R"(materials:
   line: {type: cable, young: 1.0e9, area: 1.0e-4, density: 1000}
   payload: {type: point_mass, mass: 5}

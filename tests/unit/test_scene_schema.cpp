@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "TestScenes.hpp"
+#include "coupling/effects/CouplingEffects.hpp"
 #include "structure/elements/BuildModel.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/model/MaterialKeys.hpp"
@@ -18,6 +20,8 @@
 #include "structure/scene/ReadControls.hpp"
 #include "structure/scene/Scene.hpp"
 #include "structure/scene/SceneSchema.hpp"
+#include "structure/scene/effects/EffectKinds.hpp"
+#include "structure/scene/kinds/KindReaders.hpp"
 
 using namespace fsi::structure;
 using fsi::test::drumScene;
@@ -116,6 +120,66 @@ TEST(SceneSchemaRead, WrongTypeIsNamed) {
       << e;
 }
 
+// The element kinds' keys of a mesh entry are declared by their readers (scene/kinds) with a real type, and
+// the mesh entry's section is where the mesh comes from followed by exactly those keys.
+TEST(SceneSchemaRead, KindKeysAreDeclaredWithTheirTypes) {
+  std::vector<std::string> expected{"file", "generator"};
+  for (const KindReader& r : kindReaders()) {
+    ASSERT_NE(r.schema, nullptr) << r.kind;
+    for (const SceneKey& k : r.schema->keys) {
+      EXPECT_NE(k.type, KeyType::Any) << r.kind << "." << k.name;
+      EXPECT_FALSE(k.description.empty()) << r.kind << "." << k.name;
+      EXPECT_FALSE(k.defaultValue.empty() && k.defaultNote.empty()) << r.kind << "." << k.name;
+      expected.push_back(k.name);
+    }
+  }
+  EXPECT_EQ(meshEntrySchema().names(), expected);
+  for (const SceneKey& k : meshEntrySchema().keys) EXPECT_NE(k.type, KeyType::Any) << k.name;
+  EXPECT_EQ(meshEntrySchema().key("bar_material").type, KeyType::String);
+  EXPECT_EQ(meshEntrySchema().key("cables").type, KeyType::Strings);
+  EXPECT_EQ(meshEntrySchema().key("point_masses").type, KeyType::Map);
+}
+
+TEST(SceneSchemaRead, KindKeysWrongTypeLocatedAtTheKey) {
+  // line 7, after `material: film` (line 6) of the drum's mesh entry
+  std::string e =
+      errorOf(fsi::test::replaced(drumScene(kTime), "    material: film\n",
+                                  "    material: film\n    bars: all\n    bar_material: {a: 1}\n"));
+  EXPECT_TRUE(has(e, "case.yaml:8:") && has(e, "meshes.sheet.bar_material: expected a string")) << e;
+  e = errorOf(fsi::test::replaced(drumScene(kTime), "    material: film\n",
+                                  "    material: film\n    cables: {a: 1}\n"));
+  EXPECT_TRUE(has(e, "case.yaml:7:") && has(e, "meshes.sheet.cables: expected a string or a list of strings"))
+      << e;
+  e = errorOf(fsi::test::replaced(drumScene(kTime), "    material: film\n",
+                                  "    material: film\n    point_masses: [a]\n"));
+  EXPECT_TRUE(has(e, "case.yaml:7:") && has(e, "meshes.sheet.point_masses")) << e;
+}
+
+// The sections that were described only in docs/SCENES.md's text: sets, the selectors' mapping forms, the
+// extrude constraint, the chordwise_pressure and pressure_field effects; their readers' valid keys are the
+// sections' names.
+TEST(SceneSchemaRead, SetsSelectorsExtrudeAndPressureTablesAreDeclared) {
+  fsi::coupling::registerCouplingEffects();
+  std::set<std::string> paths;
+  for (const SchemaSection* s : sceneSchema()) EXPECT_TRUE(paths.insert(s->path).second) << s->path;
+  for (const char* p : {"sets", "selector {plane: ...}", "selector {box: ...}", "selector {nearest: ...}",
+                        "selector {ids: ...}", "constraints[i].extrude", "effects.chordwise_pressure",
+                        "effects.pressure_field"})
+    EXPECT_TRUE(paths.count(p)) << p;
+  for (const EffectKind& k : effectKinds()) EXPECT_NE(k.schema, nullptr) << k.name;
+
+  std::string e = errorOf(drumScene(kTime + "sets: {corner: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0]}, "
+                                            "amog: sheet}}\n"));
+  EXPECT_TRUE(has(e, "case.yaml:10:") && has(e, "unknown key 'amog' (did you mean 'among'?)")) << e;
+  e = errorOf(drumScene(kTime + "sets: {c: {nearest: [0, 0, 0], tolerance: 1}}\n"));
+  EXPECT_TRUE(has(e, "sets.c.tolerance: unknown key 'tolerance'")) << e;
+  e = errorOf(
+      fsi::test::replaced(drumScene(kTime), "  - {nodes: sheet/boundary, fix: all}\n",
+                          "  - {nodes: sheet, extrude: {direction: [0, 0, 1], hold: true, tolerace: 1}}\n"));
+  EXPECT_TRUE(has(e, "constraints[0].extrude.tolerace: unknown key 'tolerace' (did you mean 'tolerance'?)"))
+      << e;
+}
+
 TEST(SceneSchemaRead, UnknownKeyGetsDidYouMeanFromTheSection) {
   std::string e = errorOf(wingScene(", spn: 3"));
   EXPECT_TRUE(has(e, "case.yaml:6:") && has(e, "unknown key 'spn' (did you mean 'span'?)")) << e;
@@ -177,6 +241,8 @@ TEST(SceneSchemaRead, ParafoilDefaultsAreTheParameters) {
 }
 
 TEST(SceneSchemaDocs, DocsHoldTheSchema) {
+  // The coupling library's pressure_field is in the schema once registered (as `fsi` does at start).
+  fsi::coupling::registerCouplingEffects();
   const std::vector<std::string> problems = schemaDocsProblems(scenesDoc());
   std::string all;
   for (const auto& p : problems) all += p + "\n";
@@ -185,6 +251,7 @@ TEST(SceneSchemaDocs, DocsHoldTheSchema) {
 }
 
 TEST(SceneSchemaDocs, MissingExtraOrChangedRowsFail) {
+  fsi::coupling::registerCouplingEffects();
   const std::string doc = scenesDoc();
   const SceneKey& safety = timeSchema().key("safety");
   const std::string row = "| `safety` | number | " + safety.defaultText() + " | " + safety.rangeText();

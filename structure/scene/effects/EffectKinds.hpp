@@ -42,8 +42,8 @@ struct EffectKind {
   std::string relaxationConflict;  ///< non-empty: refused in a dynamic-relaxation scene, with this reason
   /// Reads one entry (calling entry.finish(keys)) and adds what it makes to the context.
   void (*build)(const YamlMap& entry, EffectContext& ctx) = nullptr;
-  /// The entry's declared keys (SceneSchema), when the kind has them; `keys` are then its names. The
-  /// coupling library's `pressure_field` and the `chordwise_pressure` table are not in the schema yet.
+  /// The entry's declared keys (SceneSchema), when the kind has them; `keys` are then its names (the
+  /// coupling library's `pressure_field` declares its own, and is in sceneSchema() once registered).
   const SchemaSection* schema = nullptr;
 };
 

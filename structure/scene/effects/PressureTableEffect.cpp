@@ -7,14 +7,79 @@
 #include "structure/effects/PressureDistribution.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/ReadTimeFunction.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/effects/EffectKinds.hpp"
 
 namespace fsi::structure {
 
 namespace {
 
-const std::vector<std::string> kKeys{"triangles", "dynamic_pressure", "cp",      "leading_edge", "axis",
-                                     "chord",     "function",         "follower"};
+// The entry's keys; read by build() with its own messages (the cp table's rows, a zero axis).
+const SchemaSection& schema() {
+  using T = KeyType;
+  static const SchemaSection s{
+      "effects.chordwise_pressure",
+      "outer-flow pressure q*Cp(x/c) from a chordwise table on triangles (flow on the normal side; an entry "
+      "or "
+      "a list of them)",
+      {{"triangles",
+        T::Selector,
+        "",
+        "",
+        "required",
+        {},
+        {},
+        {},
+        "the triangles (each takes Cp at its centroid)"},
+       {"dynamic_pressure", T::Number, "Pa", "", "required", {}, {}, {}, "q"},
+       {"cp",
+        T::Any,
+        "",
+        "",
+        "required",
+        {},
+        {},
+        {},
+        "the table [[x/c, Cp], ...], x/c increasing (Cp > 0 pushes against the normal)"},
+       {"leading_edge", T::Vec3, "m", "[0, 0, 0]", "", {}, {}, {}, "where x/c = 0"},
+       {"axis",
+        T::Vec3,
+        "-",
+        "[1, 0, 0]",
+        "",
+        {},
+        {},
+        {},
+        "the chord direction (non-zero, need not be unit)"},
+       {"chord",
+        T::Number,
+        "m",
+        "",
+        "required",
+        excl(0),
+        {},
+        {},
+        "c: x/c = (x - leading_edge)·axis/|axis|/c"},
+       {"function",
+        T::Any,
+        "",
+        "",
+        "constant 1",
+        {},
+        {},
+        {},
+        "a time function f(t) (docs/SCENES.md, Time functions)"},
+       {"follower",
+        T::Boolean,
+        "",
+        "true",
+        "",
+        {},
+        {},
+        {},
+        "follow the current area and normal (false: a dead load on the reference geometry)"}}};
+  return s;
+}
 
 void build(const YamlMap& e, EffectContext& ctx) {
   const auto tris = ctx.sets.triangles(e.required("triangles"), e.childPath("triangles"));
@@ -41,7 +106,7 @@ void build(const YamlMap& e, EffectContext& ctx) {
   if (!isPositiveNormal(chord)) e.failAt("chord", fmt::format("is {}; {} [m]", chord, kPositiveRule));
   const TimeFunction fn = readTimeFunction(e, "function");
   const bool follower = e.boolean("follower", true);
-  e.finish(kKeys);
+  e.finish(schema().names());
   std::vector<int> conn;
   for (int t : tris)
     for (int k = 0; k < 3; ++k) conn.push_back(ctx.model.membranes.conn[3 * t + k]);
@@ -65,11 +130,12 @@ void addTrianglePressure(const YamlMap& e, EffectContext& ctx, std::vector<int> 
 
 EffectKind chordwisePressureEffect() {
   return {"chordwise_pressure",
-          kKeys,
+          schema().names(),
           "outer-flow pressure q·Cp(x/c) from a chordwise table on triangles (flow on the normal side)",
           true,
           "",
-          build};
+          build,
+          &schema()};
 }
 
 }  // namespace fsi::structure

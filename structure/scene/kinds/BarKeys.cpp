@@ -7,6 +7,7 @@
 
 #include "structure/elements/BarElement.hpp"
 #include "structure/scene/ReadMaterials.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/YamlAccess.hpp"
 #include "structure/scene/kinds/KindReaders.hpp"
 #include "structure/scene/kinds/LineGroups.hpp"
@@ -85,10 +86,35 @@ void claim(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) 
   in.kindInputs["bar"] = std::move(bars);
 }
 
+const SchemaSection& schema() {
+  static const SchemaSection s{
+      "meshes.NAME (bar)",
+      "the bar's keys of a mesh entry",
+      {{"bar_material",
+        KeyType::String,
+        "",
+        "",
+        "required with bars",
+        {},
+        {},
+        {},
+        "a `type: bar` material for the lines that are bars"},
+       {"bars",
+        KeyType::Strings,
+        "",
+        "",
+        "none",
+        {},
+        {},
+        {},
+        "the line groups that are bars, or `all`; their nodes stay a node set under the group's name"}}};
+  return s;
+}
+
 }  // namespace
 
 KindReader barReader() {
-  return {"bar", {"bar_material", "bars"}, claim, nullptr, nullptr};
+  return {"bar", &schema(), claim, nullptr, nullptr};
 }
 
 }  // namespace fsi::structure

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "structure/scene/ReadMaterials.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/YamlAccess.hpp"
 #include "structure/scene/kinds/KindReaders.hpp"
 #include "structure/scene/kinds/LineGroups.hpp"
@@ -123,10 +124,45 @@ void check(const YamlMap& entry, const MeshInput& in) {
     entry.fail("this mesh has cables: give it a 'cable_material'");
 }
 
+const SchemaSection& schema() {
+  static const SchemaSection s{
+      "meshes.NAME (cable)",
+      "the cable's keys of a mesh entry",
+      {{"cable_material",
+        KeyType::String,
+        "",
+        "",
+        "required with lines",
+        {},
+        {},
+        {},
+        "a `type: cable` material for the mesh's lines"},
+       {"cables",
+        KeyType::Strings,
+        "",
+        "",
+        "a generator's lines; none of a file's",
+        {},
+        {},
+        {},
+        "the line groups (Physical Curves) of a mesh file that are cables, or `all`; the others stay node "
+        "sets"},
+       {"edge_cables",
+        KeyType::Strings,
+        "",
+        "",
+        "none",
+        {},
+        {},
+        {},
+        "node groups: a cable on every boundary edge of the triangles with both nodes in the group"}}};
+  return s;
+}
+
 }  // namespace
 
 KindReader cableReader() {
-  return {"cable", {"cable_material", "cables", "edge_cables"}, nullptr, read, check};
+  return {"cable", &schema(), nullptr, read, check};
 }
 
 }  // namespace fsi::structure

@@ -10,6 +10,8 @@
 //   read   the kind's keys into the MeshInput (material indices, its kindInputs);
 //   check  once the entry's keys are known to be valid: a mesh with cells of the kind but no material for
 //          them is an error located at the entry.
+// Each reader declares its keys in a schema section (path "meshes.NAME (KIND)"); meshEntrySchema() lists
+// them after `file` and `generator`, so the valid keys, the docs and the readers' keys are one table.
 
 #include <string>
 #include <vector>
@@ -20,10 +22,11 @@
 namespace fsi::structure {
 
 class YamlMap;
+struct SchemaSection;
 
 struct KindReader {
-  std::string kind;               ///< the element kind it reads for (ElementKind::name())
-  std::vector<std::string> keys;  ///< its keys of a mesh entry
+  std::string kind;             ///< the element kind it reads for (ElementKind::name())
+  const SchemaSection* schema;  ///< its keys of a mesh entry (types, defaults, descriptions; SceneSchema)
   /// Takes the kind's cells out of the mesh (may be null: the kind claims nothing).
   void (*claim)(const YamlMap& entry, const MaterialTable& materials, MeshInput& in);
   /// Reads the kind's keys into `in` (errors located at the key; may be null).

@@ -1,5 +1,6 @@
 // The membrane's scene keys: `material: NAME` (a membrane material) for the mesh's triangles.
 #include "structure/scene/ReadMaterials.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/YamlAccess.hpp"
 #include "structure/scene/kinds/KindReaders.hpp"
 
@@ -17,10 +18,25 @@ void check(const YamlMap& entry, const MeshInput& in) {
     entry.fail("this mesh has triangles: give it a membrane 'material'");
 }
 
+const SchemaSection& schema() {
+  static const SchemaSection s{"meshes.NAME (membrane)",
+                               "the membrane's keys of a mesh entry",
+                               {{"material",
+                                 KeyType::String,
+                                 "",
+                                 "",
+                                 "required with triangles",
+                                 {},
+                                 {},
+                                 {},
+                                 "a `type: membrane` material for the mesh's triangles"}}};
+  return s;
+}
+
 }  // namespace
 
 KindReader membraneReader() {
-  return {"membrane", {"material"}, nullptr, read, check};
+  return {"membrane", &schema(), nullptr, read, check};
 }
 
 }  // namespace fsi::structure

@@ -5,6 +5,7 @@
 #include "structure/scene/JoinNames.hpp"
 #include "structure/scene/NearestName.hpp"
 #include "structure/scene/ReadMaterials.hpp"
+#include "structure/scene/SceneSchema.hpp"
 #include "structure/scene/YamlAccess.hpp"
 #include "structure/scene/kinds/KindReaders.hpp"
 
@@ -38,10 +39,27 @@ void read(const YamlMap& entry, const MaterialTable& materials, MeshInput& in) {
   in.kindInputs["point_mass"] = std::move(out);
 }
 
+const SchemaSection& schema() {
+  static const SchemaSection s{
+      "meshes.NAME (point_mass)",
+      "the point mass's keys of a mesh entry",
+      {{"point_masses",
+        KeyType::Map,
+        "",
+        "",
+        "none",
+        {},
+        {},
+        {},
+        "`{NODE_GROUP: MATERIAL, ...}`: a `type: point_mass` material on every node of "
+        "the group"}}};
+  return s;
+}
+
 }  // namespace
 
 KindReader pointMassReader() {
-  return {"point_mass", {"point_masses"}, nullptr, read, nullptr};
+  return {"point_mass", &schema(), nullptr, read, nullptr};
 }
 
 }  // namespace fsi::structure

@@ -20,7 +20,8 @@ void CableKind::build(const std::vector<MeshInput>& inputs, const MaterialTable&
   model.cableMaterials = materials.cable;
   for (std::size_t m = 0; m < inputs.size(); ++m)
     if (!inputs[m].mesh.lines.empty() && inputs[m].cableMaterial < 0)
-      throw MeshInputError(int(m), fmt::format("mesh '{}' has lines but no cable material", inputs[m].mesh.name));
+      throw MeshInputError(int(m),
+                           fmt::format("mesh '{}' has lines but no cable material", inputs[m].mesh.name));
   const Nodes& N = model.nodes;
   // Sorted by material then by first node.
   struct LineRef {
@@ -34,8 +35,9 @@ void CableKind::build(const std::vector<MeshInput>& inputs, const MaterialTable&
       const auto& l = md.lines[e];
       for (int k = 0; k < 2; ++k)
         if (l[k] < 0 || l[k] >= int(md.points.size()))
-          throw MeshInputError(int(m), fmt::format("mesh '{}': line {} refers to node index {} out of range", md.name,
-                                       e < md.lineTags.size() ? md.lineTags[e] : long(e + 1), l[k]));
+          throw MeshInputError(int(m),
+                               fmt::format("mesh '{}': line {} refers to node index {} out of range", md.name,
+                                           e < md.lineTags.size() ? md.lineTags[e] : long(e + 1), l[k]));
       lines.push_back({int(m), int(e), inputs[m].cableMaterial, std::min(nm[l[0]], nm[l[1]])});
     }
   }
@@ -64,15 +66,15 @@ void CableKind::build(const std::vector<MeshInput>& inputs, const MaterialTable&
     for (int k = 0; k < 3; ++k) L += std::pow(N.X[3 * b + k] - N.X[3 * a + k], 2);
     L = std::sqrt(L);
     if (a == b || !(L > 0))
-      throw MeshInputError(
-          r.mesh, fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e), N.tag[a], N.tag[b]));
+      throw MeshInputError(r.mesh, fmt::format("{} has zero length (nodes {} and {})", model.describeCable(e),
+                                               N.tag[a], N.tag[b]));
     const CableMaterial& mat = model.cableMaterials[r.material];
     if (std::size_t(r.local) < md.lineRestLength.size() && md.lineRestLength[std::size_t(r.local)] != 0.0) {
       // A line rigged longer than the distance of its ends: slack (no tension) until stretched to it.
       const double L0 = md.lineRestLength[std::size_t(r.local)];
       if (!(std::isfinite(L0) && L0 > 0))
-        throw MeshInputError(
-            r.mesh, fmt::format("{} has rest length {} (must be positive and finite)", model.describeCable(e), L0));
+        throw MeshInputError(r.mesh, fmt::format("{} has rest length {} (must be positive and finite)",
+                                                 model.describeCable(e), L0));
       L = L0;
     }
     C.restLength[e] = L;

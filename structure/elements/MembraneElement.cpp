@@ -30,8 +30,8 @@ void MembraneKind::build(const std::vector<MeshInput>& inputs, const MaterialTab
   model.membraneMaterials = materials.membrane;
   for (std::size_t m = 0; m < inputs.size(); ++m)
     if (!inputs[m].mesh.triangles.empty() && inputs[m].membraneMaterial < 0)
-      throw MeshInputError(int(m),
-                           fmt::format("mesh '{}' has triangles but no membrane material", inputs[m].mesh.name));
+      throw MeshInputError(
+          int(m), fmt::format("mesh '{}' has triangles but no membrane material", inputs[m].mesh.name));
   const Nodes& N = model.nodes;
   // Sorted by material then by first node.
   struct TriRef {
@@ -45,8 +45,9 @@ void MembraneKind::build(const std::vector<MeshInput>& inputs, const MaterialTab
       const auto& t = md.triangles[e];
       for (int k = 0; k < 3; ++k)
         if (t[k] < 0 || t[k] >= int(md.points.size()))
-          throw MeshInputError(int(m), fmt::format("mesh '{}': triangle {} refers to node index {} out of range", md.name,
-                                       e < md.triangleTags.size() ? md.triangleTags[e] : long(e + 1), t[k]));
+          throw MeshInputError(
+              int(m), fmt::format("mesh '{}': triangle {} refers to node index {} out of range", md.name,
+                                  e < md.triangleTags.size() ? md.triangleTags[e] : long(e + 1), t[k]));
       tris.push_back({int(m), int(e), inputs[m].membraneMaterial, std::min({nm[t[0]], nm[t[1]], nm[t[2]]})});
     }
   }
@@ -74,8 +75,9 @@ void MembraneKind::build(const std::vector<MeshInput>& inputs, const MaterialTab
     int n[3];
     for (int k = 0; k < 3; ++k) n[k] = T.conn[3 * e + k] = model.meshes[r.mesh].node[t[k]];
     if (n[0] == n[1] || n[1] == n[2] || n[0] == n[2])
-      throw MeshInputError(r.mesh, fmt::format("{} repeats a node (nodes {}, {}, {})", model.describeTriangle(e),
-                                   N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
+      throw MeshInputError(
+          r.mesh, fmt::format("{} repeats a node (nodes {}, {}, {})", model.describeTriangle(e), N.tag[n[0]],
+                              N.tag[n[1]], N.tag[n[2]]));
     double d21[3], d31[3];
     for (int k = 0; k < 3; ++k) {
       d21[k] = N.X[3 * n[1] + k] - N.X[3 * n[0] + k];
@@ -89,8 +91,8 @@ void MembraneKind::build(const std::vector<MeshInput>& inputs, const MaterialTab
     if (!(a0 > 0) || !(c0 > 1e-9 * lmax))
       throw MeshInputError(
           r.mesh, fmt::format("{} is degenerate (zero area; nodes {}, {}, {}): check for duplicate or "
-                      "collinear nodes",
-                      model.describeTriangle(e), N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
+                              "collinear nodes",
+                              model.describeTriangle(e), N.tag[n[0]], N.tag[n[1]], N.tag[n[2]]));
     const MembraneMaterial& mat = model.membraneMaterials[r.material];
     const double area = 0.5 * a0 * c0;
     double* g = &T.geo[MembraneTriangles::kGeo * e];

@@ -130,6 +130,50 @@ TEST(Flight, SteadyWindCarriesTheGlide) {
   EXPECT_LT((gWindy - gCalm - wind.steady).norm(), 1e-6) << "ground velocity = air velocity + wind";
 }
 
+// Pitch period of a glider whose canopy point sits l above the mass centre, after a small pitch-rate kick
+// from its steady glide at airspeed V (no apparent mass, constant coefficients: the force does not depend on
+// the attitude).
+double pitchPeriod(double airspeed) {
+  FlightSystem s;
+  s.mass = 100;
+  s.inertia = Vec3(20, 10, 20).asDiagonal();
+  s.aero.alpha = {0.0};
+  s.aero.CL = {0.8};
+  s.aero.CD = {0.2};
+  s.aero.Cm = {0.0};
+  s.aero.span = 8;
+  s.aero.chord = 3;
+  s.aero.area = 2 * s.mass * s.gravity / (s.airDensity * airspeed * airspeed * std::hypot(0.8, 0.2));
+  s.canopyPoint = Vec3(0, 0, -1.0);
+  FlightState x;
+  x.velocity = Vec3(airspeed, 0, 0);
+  const double dt = 1e-3;
+  x = integrate(s, Wind{}, x, 60.0, dt);
+  x.rates.y() += 0.05;
+  std::vector<double> downCrossings;
+  double prev = x.rates.y(), t = 60.0;
+  for (int i = 0; i < 8000; ++i) {
+    x = rungeKuttaStep(s, Wind{}, Controls{}, t, dt, x);
+    t += dt;
+    const double q = x.rates.y();
+    if (prev > 0 && q <= 0) downCrossings.push_back(t - dt * q / (q - prev));
+    prev = q;
+  }
+  if (downCrossings.size() < 3) return 0;
+  return (downCrossings.back() - downCrossings.front()) / double(downCrossings.size() - 1);
+}
+
+TEST(Flight, PendulumModeAboutTheMassCentre) {
+  // The aerodynamic force W acts at the canopy point, l above the mass centre; with coefficients that do not
+  // depend on the attitude it gives the restoring moment W l sin(theta). When the force does not depend on
+  // the canopy point's motion either, the body swings about its mass centre: T = 2 pi sqrt(J / (W l)). The
+  // force's dependence on that point's velocity damps the swing by about sqrt(g l) / V of critical: small
+  // at 60 m/s (and the pitch period the free limit's to 1 %); at a parafoil's 10-15 m/s the swing is damped
+  // within a period and the canopy acts partly as a pivot (T towards 2 pi sqrt((J + m l^2) / (W l))).
+  const double J = 10, W = 100 * 9.80665, l = 1.0;
+  EXPECT_NEAR(pitchPeriod(60.0) / (2 * M_PI * std::sqrt(J / (W * l))), 1.0, 0.01);
+}
+
 TEST(Flight, TablesAreChecked) {
   AeroTable t;
   EXPECT_THROW(t.check("flight.yaml"), InputError);

@@ -109,6 +109,24 @@ FlightResult runFlight(const FlightCase& c, const std::filesystem::path& outDir,
   const Vec3 d = rows.back().pos - rows[from].pos;
   res.glideRatio = d.z() > 0 ? d.head<2>().norm() / d.z() : 0.0;
   res.rows = int(rows.size());
+  // The path for ParaView: a legacy-VTK polyline in east-north-up coordinates (x east, y north, z altitude;
+  // right-handed) with the time, airspeed and descent rate on its points.
+  {
+    std::ofstream vtk(outDir / "trajectory.vtk");
+    vtk << "# vtk DataFile Version 3.0\nfsi fly trajectory (x east, y north, z altitude) [m]\nASCII\n"
+        << "DATASET POLYDATA\nPOINTS " << rows.size() << " double\n";
+    for (const Row& r : rows) vtk << fmt::format("{:.6f} {:.6f} {:.6f}\n", r.pos.y(), r.pos.x(), -r.pos.z());
+    vtk << "LINES 1 " << rows.size() + 1 << "\n" << rows.size();
+    for (std::size_t i = 0; i < rows.size(); ++i) vtk << " " << i;
+    vtk << "\nPOINT_DATA " << rows.size() << "\n";
+    auto field = [&](const char* name, auto value) {
+      vtk << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
+      for (const Row& r : rows) vtk << fmt::format("{:.6g}\n", value(r));
+    };
+    field("time", [](const Row& r) { return r.t; });
+    field("airspeed", [](const Row& r) { return r.air.airspeed; });
+    field("descent_rate", [](const Row& r) { return r.ground.z(); });
+  }
   nlohmann::json j;
   j["flight_file"] = c.file;
   j["landed"] = res.landed;

@@ -36,6 +36,14 @@ def main(fsi, work):
     if not summary["landed"]:
         fail("did not land")
     rows = list(csv.DictReader(open(os.path.join(out, "trajectory.csv"))))
+    # The ParaView path: a legacy-VTK polyline through every row (x east, y north, z altitude).
+    vtk = open(os.path.join(out, "trajectory.vtk")).read().split("\n")
+    n = int(vtk[4].split()[1])
+    first = [float(v) for v in vtk[5].split()]
+    if n != len(rows) or vtk[5 + n].split()[:2] != ["LINES", "1"] or "SCALARS airspeed double 1" not in vtk:
+        fail(f"trajectory.vtk: {n} points for {len(rows)} rows, or no polyline / airspeed")
+    if abs(first[2] - float(rows[0]["altitude_m"])) > 1e-6 or abs(first[1] - float(rows[0]["north_m"])) > 1e-6:
+        fail(f"trajectory.vtk: first point {first} is not the first row (east, north, altitude)")
     glide = [r for r in rows if 20.0 <= float(r["time_s"]) <= 28.0]
     if len(glide) < 50:
         fail(f"{len(glide)} rows between 20 and 28 s")

@@ -112,13 +112,24 @@ def shrink_scene(tree):
     return tree
 
 
+# The files a seed scene reads beside it (a case's Gmsh meshes), by seed name: written next to scene.yaml.
+SEED_FILES = {}
+
+
+def write_seed_files(name, case_dir):
+    for file_name, data in SEED_FILES.get(name, {}).items():
+        (case_dir / file_name).write_bytes(data)
+
+
 def load_seeds():
     """{kind: [(name, payload)]}: scene texts, Gmsh file bytes, and the polyMesh files of the seed case."""
     scenes = []
     for path in sorted((SOURCE / "cases" / "structure").glob("*/scene.yaml")):
         tree = shrink_scene(yaml.safe_load(path.read_bytes()))
         text = yaml.safe_dump(tree, default_flow_style=None, sort_keys=False, width=100).encode()
-        scenes.append((f"cases/structure/{path.parent.name}/scene.yaml (shrunk)", text))
+        name = f"cases/structure/{path.parent.name}/scene.yaml (shrunk)"
+        scenes.append((name, text))
+        SEED_FILES[name] = {p.name: p.read_bytes() for p in sorted(path.parent.glob("*.msh"))}
     for path in sorted((SEEDS / "scenes").glob("*.yaml")):
         scenes.append((f"tests/fuzz/seeds/scenes/{path.name}", path.read_bytes()))
     gmsh = [(f"tests/fuzz/seeds/gmsh/{p.name}", p.read_bytes()) for p in sorted((SEEDS / "gmsh").glob("*.msh"))]
@@ -164,6 +175,7 @@ def build_case(kind, index, seed, seeds, work, fsi):
         (case.dir / "scene.yaml").write_bytes(text)
         shutil.copy(SEEDS / "gmsh" / mutate.pick(rng, [p.name for p in sorted((SEEDS / "gmsh").glob("*.msh"))]),
                     case.dir / "mesh.msh")
+        write_seed_files(name, case.dir)
         case.cmd = [fsi, "run", "scene.yaml", "--out", "out"] + [f"--set={s}" for s in case.sets]
         case.mode = "run"
         case.text_inputs = ["scene.yaml"]
@@ -226,6 +238,7 @@ def unmodified_cases(seeds, work, fsi):
         case.dir.mkdir(parents=True)
         (case.dir / "scene.yaml").write_bytes(text)
         shutil.copy(SEEDS / "gmsh" / REFERENCE_MESH, case.dir / "mesh.msh")
+        write_seed_files(name, case.dir)
         case.seed_name, case.unmodified, case.mode = name, True, "run"
         case.cmd = [fsi, "run", "scene.yaml", "--out", "out"]
         case.text_inputs, case.input_names = ["scene.yaml"], ["scene.yaml"]

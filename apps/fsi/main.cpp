@@ -6,8 +6,9 @@
 //                          or a structure scene's coupling interface)
 //   fsi plot RUN_DIR [--out DIR] [--color auto|stress|displacement]
 //                          PNG plots of a run (share/fsi/fsi_plot.py)
-//   fsi generate SCENE.yaml --out DIR [--set key.path=value ...]
-//                          writes the scene's meshes (MESH.msh with its sets, MESH.stl of the outer surface)
+//   fsi generate SCENE.yaml --out DIR [--set key.path=value ...] [--deformed RUN]
+//                          writes the scene's meshes (MESH.msh with its sets, MESH.stl of the outer surface),
+//                          as designed or at a run's last frame (GenerateCommand)
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -28,13 +29,13 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "GenerateCommand.hpp"
 #include "coupling/effects/CouplingEffects.hpp"
 #include "coupling/interface/SceneInterface.hpp"
 #include "coupling/mapping/MapCheck.hpp"
 #include "coupling/mapping/StateTransfer.hpp"
 #include "flight/FlightFile.hpp"
 #include "flight/FlightRun.hpp"
-#include "structure/io/MeshFileWriters.hpp"
 #include "structure/io/ResultsWriter.hpp"
 #include "structure/io/StateFile.hpp"
 #include "structure/model/Error.hpp"
@@ -445,34 +446,6 @@ int flyCommand(const fs::path& file, const fs::path& outDir, const std::vector<s
   return 0;
 }
 
-// Every mesh of the scene as built (generators run, files read), before the model renumbers it: MESH.msh with
-// its groups as physical groups, and for meshes with triangles MESH.stl of the outer surface (the `skin` set
-// when the mesh has one, e.g. a parafoil; otherwise every triangle), ready for snappyHexMesh.
-int generateCommand(const fs::path& scenePath, const fs::path& outDir, const std::vector<std::string>& sets) {
-  restoreDefaultInterrupts();  // no run to stop cleanly: signals end the program as usual
-  const fsi::structure::Scene scene = fsi::structure::loadScene(scenePath, sets);
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec)
-    throw std::runtime_error(fmt::format("{}: cannot create the folder: {}", outDir.string(), ec.message()));
-  for (const auto& m : scene.model->meshes) {
-    const fsi::structure::MeshData& mesh = m.source;
-    const fs::path msh = outDir / (m.name + ".msh");
-    fsi::structure::writeMsh(mesh, msh);
-    fmt::print("{}  {} nodes, {} triangles, {} lines, {} sets\n", msh.string(), mesh.points.size(),
-               mesh.triangles.size(), mesh.lines.size(),
-               mesh.nodeGroups.size() + mesh.triangleGroups.size() + mesh.lineGroups.size());
-    if (mesh.triangles.empty()) continue;
-    const auto skin = mesh.triangleGroups.find("skin");
-    const std::vector<int> outer = skin == mesh.triangleGroups.end() ? std::vector<int>{} : skin->second;
-    const fs::path stl = outDir / (m.name + ".stl");
-    fsi::structure::writeStl(mesh, outer, stl, m.name);
-    fmt::print("{}  {} triangles ({})\n", stl.string(), outer.empty() ? mesh.triangles.size() : outer.size(),
-               outer.empty() ? "all" : "set 'skin'");
-  }
-  return 0;
-}
-
 }  // namespace
 
 // `fsi scene-keys`: the declared scene schema (structure/scene/SceneSchema), as a list, as the markdown of
@@ -585,6 +558,11 @@ int main(int argc, char** argv) {
   generate->add_option("scene", genScene, "scene YAML file")->required();
   generate->add_option("--out,-o", genOut, "output directory")->required();
   generate->add_option("--set", genSets, "override a scene value: key.path=value (repeatable)");
+  fs::path genDeformed;
+  generate->add_option(
+      "--deformed", genDeformed,
+      "the meshes at a run's last frame (RUN or RUN/results.h5: interpolated onto this scene's "
+      "mesh, which may sample the same geometry finer; or a state file of a run of this scene)");
 
   auto* fly = app.add_subcommand(
       "fly", "fly the parafoil-payload system on a coefficient table (FLIGHT.yaml; docs/FLIGHT.md)");
@@ -635,7 +613,10 @@ int main(int argc, char** argv) {
                              mapVariant, mapLevel, mapSets, !mapNoGapCorrection, mapDefect, !mapNoKeepSide);
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
-    if (*generate) return generateCommand(genScene, genOut, genSets);
+    if (*generate) {
+      restoreDefaultInterrupts();  // no run to stop cleanly: signals end the program as usual
+      return fsi::app::generateCommand(genScene, genOut, genSets, genDeformed);
+    }
     if (*fly) return flyCommand(flyFile, flyOut, flySets, flyQuiet);
     if (*sceneKeys) return sceneKeysCommand(keysMarkdown, keysCheck);
   } catch (const fsi::InputError& e) {

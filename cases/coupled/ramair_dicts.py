@@ -188,7 +188,7 @@ def write_case(settings_path, stl_path, case):
         # The half y >= 0, its far side as far out as the whole box's; mirrorMesh adds the other half.
         span = hi[1] - lo[1]
         if abs(hi[1] + lo[1]) > 1e-6 * span:
-            raise InputError(f"{settings_path}: mirror_mesh yes needs a wing symmetric about y = 0; the skin "
+            raise InputError(f"{settings_path}: {'mirror_mesh' if mirror else 'half_domain'} yes needs a wing symmetric about y = 0; the skin "
                              f"{stl_path} spans y = {lo[1]:.6g} .. {hi[1]:.6g}")
         n[1] = max(1, math.ceil((hi[1] + s["lateral"] * c) / d["h0"]))
         bmin[1], bmax[1] = 0.0, n[1] * d["h0"]

@@ -87,6 +87,9 @@ def main(argv):
             if s["stl_bulge"] >= 0:
                 print("--set")
                 print(f"meshes.wing.generator.bulge={s['stl_bulge']:.9g}")
+            if s["stl_deformed"]:
+                print("--deformed")
+                print(s["stl_deformed"])
         elif cmd == "write":
             write_case(*args)
         elif cmd == "structure":

@@ -126,6 +126,11 @@ SETTINGS = {
     "stl_bulge": ("float", -1.0, -1.0, 0.5,
                   "the fluid's skin: the generator's cell bulge (-1: the scene's; a rigid run may differ, a "
                   "coupled one may not)"),
+    "stl_deformed": ("path", "", None, None,
+                     "rigid wing: the fluid's skin at a structure run's last frame (`fsi generate --deformed`): "
+                     "its folder, results.h5 or a state file (relative to the settings file), e.g. the inflated "
+                     "canopy of `fsi run structure.yaml` or a coupled run's structure/; sampled as stl_chordwise_"
+                     "points and stl_span_divisions give, the displacement interpolated (docs/AERODYNAMICS.md)"),
     "ranks": ("int", 2, 2, 64, "MPI ranks of Allrun.parallel (hierarchical (N 1 1))"),
     "zero_lift_angle": ("float", -4.15, -20.0, 20.0,
                         "the section's zero-lift angle [deg] for the lifting-line estimate (NACA 4415: -4.15, thin airfoil theory)"),
@@ -211,6 +216,18 @@ def read_brake_table(loc, key, text, base):
     return {"file": os.path.abspath(path), "rows": rows}
 
 
+def read_run_path(loc, key, text, base):
+    """A structure run's folder, results.h5 or state file (checked: a plain path that exists), absolute."""
+    if not re.fullmatch(r"[A-Za-z0-9._/+-]+", text):
+        raise InputError(f"{loc}: {key} '{text}': a path of letters, digits and . _ / + - only")
+    path = os.path.abspath(text if os.path.isabs(text) else os.path.join(base, text))
+    h5 = os.path.join(path, "results.h5") if os.path.isdir(path) else path
+    if not os.path.isfile(h5):
+        raise InputError(f"{loc}: {key} {text}: no such run ({h5} does not exist; run `fsi run structure.yaml "
+                         "--out DIR` first)")
+    return path
+
+
 def read_settings(path):
     try:
         with open(path, encoding="utf-8") as f:
@@ -235,6 +252,8 @@ def read_settings(path):
         kind, _, lo, hi, what = SETTINGS[key]
         if kind == "file":
             value = read_brake_table(loc, key, text, os.path.dirname(os.path.abspath(path)))
+        elif kind == "path":
+            value = read_run_path(loc, key, text, os.path.dirname(os.path.abspath(path)))
         elif isinstance(kind, list):
             if text not in kind:
                 raise InputError(f"{loc}: {key} must be one of {', '.join(kind)}, not '{text}'")
@@ -305,6 +324,9 @@ def read_settings(path):
         if values["mesh_motion"] not in ("laplacian", "rigidfit"):
             raise InputError(f"{path}:{where['mesh_motion']}: mesh_motion none with coupled yes: the coupled wing "
                              "moves the mesh (mesh_motion laplacian or auto)")
+        if values["stl_deformed"]:
+            raise InputError(f"{path}:{where['stl_deformed']}: stl_deformed with coupled yes: the coupled canopy "
+                             "starts from the structure's own state (remove stl_deformed)")
         if values["stl_bulge"] >= 0:
             raise InputError(f"{path}:{where['stl_bulge']}: stl_bulge with coupled yes: the fluid's skin must be "
                              "the structure's own surface (remove stl_bulge)")
@@ -387,6 +409,8 @@ def settings_table():
         dflt = "required" if default is None else num(default)
         if kind == "file":
             dflt, rng = "none", "a CSV file"
+        elif kind == "path":
+            dflt, rng = "none", "a run's folder or file"
         else:
             rng = ", ".join(kind) if isinstance(kind, list) else f"{num(lo)} – {num(hi)}" + (" (whole)" if kind == "int" else "")
         rows.append(f"| `{key}` | {dflt} | {rng} | {text.replace('|', '/')} |")

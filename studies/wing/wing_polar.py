@@ -33,6 +33,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent.parent
 sys.path.insert(0, str(ROOT / "studies/common"))
 from case_variants import structure_with  # noqa: E402 (the case's structure.yaml with values changed)
+sys.path.insert(0, str(ROOT / "studies/wing"))
+from section_geometry import shape_report  # noqa: E402
 CASE = ROOT / "cases/coupled/ramair-kt"
 ENV = ROOT / "build/share/fsi/fsi-env.sh"
 INCIDENCE = 6.0  # structure.yaml's generator incidence [deg]: the centre section's chord to the x axis
@@ -44,7 +46,11 @@ VARIANTS = {
     "bulged": ({}, 0.25, "the arc R/b = 1, the cells bulged by a quarter of their width (the coupled canopy's skin)"),
     "bulged16": ({"cells": 16}, 0.25, "the arc R/b = 1, 16 cells (half as wide) bulged by a quarter of their width: "
                                       "the same bulge ratio, half the bulge"),
+    "trimmed": ({}, -1.0, "the canopy as a coupled run left it (--deformed RUN: its structure/ folder), the design's "
+                          "skin moved to the run's last frame; alpha from its centre rib's chord"),
 }
+# the skin's sections the report states (y of the centre rib, the centre cell's middle, a tip cell's middle)
+STATIONS = {"centre_rib": 0.0, "centre_cell": 0.1875, "tip_cell": 1.3}
 
 SETTINGS = """# written by studies/wing/wing_polar.py: rung 2, the rigid wing in steady symmetric flow
 speed 15
@@ -102,9 +108,73 @@ def case_dir(out, variant, level, alpha, solver, wall="functions"):
                                           + ("" if wall == "functions" else f"-{wall}")))
 
 
-def run_point(out, variant, level, alpha, iterations, env, solver="simple", courant=2.0, flow_time=2.0,
-              wall="functions"):
+def symmetric_source(deformed, folder):
+    """A copy of the run's last frame (results.h5: its mesh and that frame only) with the displacement made
+    mirror-symmetric about y = 0 (the mean of each node's and its mirror node's, the y component odd): the half
+    domain with a symmetry plane needs a symmetric skin, and a coupled run's canopy is symmetric only to the
+    unsteady flow's asymmetry (reported as the largest change)."""
+    import h5py
+    import numpy as np
+    src = Path(deformed)
+    src = src / "results.h5" if src.is_dir() else src
+    dst = folder / "source" / "results.h5"
+    dst.parent.mkdir(parents=True, exist_ok=True)
+    with h5py.File(src, "r") as f, h5py.File(dst, "w") as g:
+        last = sorted(f["steps"])[-1]
+        for k, v in f.attrs.items():
+            g.attrs[k] = v
+        f.copy("mesh", g)
+        frame = g.create_group(f"steps/{last}")
+        for k, v in f[f"steps/{last}"].attrs.items():
+            frame.attrs[k] = v
+        x, u = f[f"steps/{last}/coordinates"][()], f[f"steps/{last}/displacement"][()]
+        ref = x - u
+        key = {tuple(np.round(r, 6)): i for i, r in enumerate(ref)}
+        mirror = np.array([key.get(tuple(np.round(r * [1, -1, 1], 6)), -1) for r in ref])
+        if (mirror < 0).any():
+            raise SystemExit(f"wing_polar: {src}: {int((mirror < 0).sum())} nodes have no mirror node about y = 0")
+        us = 0.5 * (u + u[mirror] * [1, -1, 1])
+        frame["displacement"] = us
+        frame["coordinates"] = ref + us
+    return dst, float(np.abs(us - u).max())
+
+
+def shape(out, variant, env, deformed=None):
+    """The variant's fluid skin, made once in OUT/<variant>/shape with the case's fsi generate arguments (the
+    design's, or moved to the --deformed run's last frame), and its sections (section_geometry): what its angles
+    of attack are measured from."""
+    folder = Path(out) / variant / "shape"
+    report = folder / "shape.json"
+    if report.exists():
+        return json.loads(report.read_text())
+    folder.mkdir(parents=True, exist_ok=True)
     changes, bulge, _ = VARIANTS[variant]
+    (folder / "structure.yaml").write_text(structure_with((CASE / "structure.yaml").read_text(), changes,
+                                                          f"{CASE}/structure.yaml"))
+    args = ["--set", "meshes.wing.generator.chordwise_points=60", "--set", "meshes.wing.generator.span_divisions=6"]
+    if bulge >= 0:
+        args += ["--set", f"meshes.wing.generator.bulge={bulge:g}"]
+    rep = {}
+    if deformed:
+        deformed, rep["symmetrised_by_m"] = symmetric_source(deformed, folder)
+    for name, extra in (("design", []), ("skin", ["--deformed", str(deformed)] if deformed else [])):
+        cmd = ["bash", "-c", '. "$0" && exec fsi generate structure.yaml --out "$1" "${@:2}"', str(env), name] + args + extra
+        subprocess.run(cmd, cwd=folder, check=True, stdout=subprocess.DEVNULL)
+        rep[name] = shape_report(folder / name / "wing.stl", STATIONS)
+    # alpha of the centre rib: the incidence plus how far the skin's centre rib turned from the design's, both
+    # measured the same way (section_geometry)
+    rep["incidence_deg"] = INCIDENCE + rep["skin"]["centre_rib"]["chord_angle_deg"] - rep["design"]["centre_rib"]["chord_angle_deg"]
+    rep["deformed_from"] = str(deformed) if deformed else None
+    rep["stl_deformed"] = str(deformed) if deformed else None
+    report.write_text(json.dumps(rep, indent=1) + "\n")
+    return rep
+
+
+def run_point(out, variant, level, alpha, iterations, env, solver="simple", courant=2.0, flow_time=2.0,
+              wall="functions", deformed=None):
+    changes, bulge, _ = VARIANTS[variant]
+    geo = shape(out, variant, env, deformed)
+    incidence, deformed = geo["incidence_deg"], geo["stl_deformed"]
     case = case_dir(out, variant, level, alpha, solver, wall)
     if (case / "summary.json").exists():
         return case, 0.0
@@ -126,8 +196,8 @@ def run_point(out, variant, level, alpha, iterations, env, solver="simple", cour
         steps = math.ceil(flow_time / (courant * h / 15.0))
         run = f"solver pimple\ncourant {courant:g}\nouter_correctors 2\nsteps {steps}\n"
     (case / "polar.settings").write_text(
-        SETTINGS + f"resolution {level}\nangle {alpha - INCIDENCE:g}   # alpha {alpha:g} deg at the centre chord\n"
-        f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n"
+        SETTINGS + f"resolution {level}\nangle {alpha - incidence:.6g}   # alpha {alpha:g} deg at the centre chord\n"
+        + (f"stl_deformed {deformed}\n" if deformed else "") + f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n"
         f"wall_split {2 if wall == 'split' else 0}\n" + (f"wall_layers 3\n" if wall == "layers3" else "") + run)
     t0 = time.time()
     # The environment of the build (--env); the arguments are a list, nothing here passes through a shell but
@@ -314,6 +384,8 @@ def main():
                          "layers3: wall_layers 3 (3 layers sized on the wall cell, the coupled run's s1-f3 mesh)")
     ap.add_argument("--courant", type=float, default=2.0, help="pimple: Courant number on the finest wing cell")
     ap.add_argument("--flow-time", type=float, default=2.0, help="pimple: seconds of flow (30 chord passages at 15 m/s)")
+    ap.add_argument("--deformed", help="variant trimmed: the structure run whose last frame is the skin (a coupled "
+                                       "run's CASE/structure folder, or a results.h5)")
     ap.add_argument("--out", default=str(ROOT / "studies-out/wing"))
     ap.add_argument("--json", default=str(ROOT / "docs/data/wing_polar.json"))
     ap.add_argument("--png", default=str(ROOT / "docs/img/wing_polar.png"))
@@ -332,6 +404,10 @@ def main():
     for v in variants:
         if v not in VARIANTS:
             ap.error(f"--variants: unknown '{v}' (valid: {', '.join(VARIANTS)})")
+    if "trimmed" in variants and not a.deformed:
+        ap.error("--variants trimmed needs --deformed RUN (the coupled run's structure folder)")
+    if a.deformed:
+        a.deformed = str(Path(a.deformed).resolve())
     levels = a.levels.split(",")
     for lvl in levels:
         if lvl not in ("coarse", "medium", "fine", "wake"):
@@ -352,11 +428,17 @@ def main():
                 else:
                     print(f"wing_polar: {v} {lvl} alpha {al:g} ...", flush=True)
                     case, wall = run_point(a.out, v, lvl, al, a.iterations, a.env, a.solver, a.courant,
-                                           a.flow_time, a.wall)
+                                           a.flow_time, a.wall, a.deformed if v == "trimmed" else None)
                     if case is None:
                         failed += 1
                         continue
                 row = collect(case, v, lvl, al, wall, a.solver, a.wall)
+                if v == "trimmed":
+                    geo = shape(a.out, v, a.env)
+                    row["shape"] = {"deformed_from": geo["deformed_from"], "incidence_deg": geo["incidence_deg"],
+                                    "sections": {k: geo["skin"][k] for k in STATIONS},
+                                    "planform_area_xy_m2": geo["skin"]["planform_area_xy_m2"],
+                                    "design_planform_area_xy_m2": geo["design"]["planform_area_xy_m2"]}
                 if a.collect:
                     old = json.loads(Path(a.json).read_text()) if Path(a.json).exists() else {"points": []}
                     prev = [p for p in old["points"] if (p["variant"], p["level"], p["alpha_deg"],

@@ -44,6 +44,47 @@ def facets(f):
 sys.exit(0 if facets(sys.argv[1]) == facets(sys.argv[2]) else 1)
 PY
 
+# --deformed: the skin at a run's last frame. (1) The same scene from its own results.h5: every vertex of the
+# STL is a node of the run, at that node's last-frame position. (2) A translation in the results file,
+# generated with the chordwise points doubled (another mesh of the same geometry): a constant displacement
+# interpolates exactly, so the finer STL is the finer design STL moved by it. (3) A missing run is refused.
+"$FSI" run "$SRC/parafoil-small.yaml" --out run -q > run.log 2>&1 || { cat run.log; fail "fsi run failed"; }
+"$FSI" generate "$SRC/parafoil-small.yaml" --out deformed --deformed run > deformed.log 2>&1 ||
+  { cat deformed.log; fail "fsi generate --deformed failed"; }
+grep -q "deformed" deformed.log || fail "generate --deformed did not say what it did"
+"$FSI" generate "$SRC/parafoil-small.yaml" --out fine --set meshes.wing.generator.chordwise_points=40 > fine.log 2>&1 ||
+  { cat fine.log; fail "fsi generate (finer) failed"; }
+/usr/bin/python3 - "$FSI" "$SRC/parafoil-small.yaml" <<'PY' || fail "--deformed does not place the skin at the run's last frame"
+import h5py, numpy as np, shutil, subprocess, sys
+def verts(f):
+    return np.array([[float(x) for x in l.split()[1:4]] for l in open(f) if l.split()[:1] == ["vertex"]])
+with h5py.File("run/results.h5", "r") as f:
+    last = sorted(f["steps"])[-1]
+    x = f[f"steps/{last}/coordinates"][()]
+    u = f[f"steps/{last}/displacement"][()]
+assert np.abs(u).max() > 1e-6, "the run moved nothing: the check would not see a wrong frame"
+v = verts("deformed/wing.stl")
+d = np.min(np.linalg.norm(v[:, None, :] - x[None, :, :], axis=2), axis=1)
+print(f"(1) {len(v)} STL vertices, largest distance to a last-frame node {d.max():.2e} m")
+if d.max() > 1e-7:
+    sys.exit(1)
+shutil.copy("run/results.h5", "shift.h5")
+t = np.array([0.25, -0.5, 1.5])
+with h5py.File("shift.h5", "r+") as f:
+    ref = x - u
+    f[f"steps/{last}/displacement"][...] = np.broadcast_to(t, u.shape)
+    f[f"steps/{last}/coordinates"][...] = ref + t
+subprocess.run([sys.argv[1], "generate", sys.argv[2], "--out", "shifted", "--deformed", "shift.h5",
+                "--set", "meshes.wing.generator.chordwise_points=40"], check=True, stdout=subprocess.DEVNULL)
+a, b = verts("fine/wing.stl") + t, verts("shifted/wing.stl")
+err = np.abs(a - b).max()
+print(f"(2) {len(b)} vertices of the finer skin, translated: largest error {err:.2e} m")
+sys.exit(0 if len(a) == len(b) and len(a) > len(v) and err < 1e-6 else 1)
+PY
+"$FSI" generate "$SRC/parafoil-small.yaml" --out none --deformed no-such-run > none.log 2>&1
+rc=$?
+[ $rc = 2 ] && grep -q "no-such-run" none.log || { cat none.log; fail "a missing --deformed run: exit $rc, want 2 naming it"; }
+
 if [ "$OPENFOAM" = openfoam ]; then
   export WM_PROJECT_DIR=/usr/share/openfoam  # Debian's OpenFOAM finds its etc/ there (as in tests/adapter)
   surfaceCheck gen/wing.stl > check.log 2>&1 || { tail -20 check.log; fail "surfaceCheck failed"; }

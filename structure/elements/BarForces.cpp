@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "structure/elements/AxialKernel.hpp"
+
 namespace fsi::structure {
 
 BarForces::BarForces(const Bars& bars, ElementDamping damping) : el_(bars), damping_(damping) {
@@ -17,35 +19,11 @@ BarForces::BarForces(const Bars& bars, ElementDamping damping) : el_(bars), damp
 
 namespace {
 
+// Bars carry compression: the shared axial kernel with the linear law both ways.
 template <bool Viscous, bool Energy>
 void barBlock(const Bars& el, const BarBlock& blk, const ElementDamping& damping, ForceContext& ctx) {
-  const double* __restrict x = ctx.x;
-  const double* __restrict v = ctx.v;
-  double* __restrict f = ctx.fint;
-  double energy = 0;
-  for (int e = blk.begin; e < blk.end; ++e) {
-    const int i = el.conn[2 * e], j = el.conn[2 * e + 1];
-    const double d[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
-    const double L = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    const double L0 = el.restLength[e];
-    const double eps = (L - L0) / L0;
-    double N = blk.axialStiffness * eps;
-    if constexpr (Energy) energy += 0.5 * N * eps * L0;
-    const double iL = 1.0 / L;
-    if constexpr (Viscous) {
-      const double rate = ((v[3 * j] - v[3 * i]) * d[0] + (v[3 * j + 1] - v[3 * i + 1]) * d[1] +
-                           (v[3 * j + 2] - v[3 * i + 2]) * d[2]) *
-                          iL / L0;
-      // ρ c = E/c with the bar's own (scaled) wave speed, as for cables (CableForces.cpp).
-      N += (damping.beta + damping.bulkB1 * el.invWaveSpeed[e] * L0) * blk.axialStiffness * rate;
-    }
-    const double s = N * iL;
-    for (int k = 0; k < 3; ++k) {
-      f[3 * i + k] -= s * d[k];
-      f[3 * j + k] += s * d[k];
-    }
-  }
-  if constexpr (Energy) ctx.strainEnergy += energy;
+  axial::addBlock<Viscous, Energy, false>(el, blk.begin, blk.end, blk.axialStiffness, damping.beta,
+                                          damping.bulkB1, ctx);
 }
 
 template <bool Viscous>

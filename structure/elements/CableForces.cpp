@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "structure/elements/AxialKernel.hpp"
 #include "structure/elements/CableBatch.hpp"
 
 namespace fsi::structure {
@@ -33,37 +34,11 @@ CableForces::CableForces(const Cables& cables, CableViscosity viscosity, CableKe
 }
 
 namespace {
+// Cables go slack in compression: the shared axial kernel, tension only.
 template <bool Viscous, bool Energy>
 void cableBlock(const Cables& el, const CableBlock& blk, const CableViscosity& visc, ForceContext& ctx) {
-  const double* __restrict x = ctx.x;
-  const double* __restrict v = ctx.v;
-  double* __restrict f = ctx.fint;
-  double energy = 0;
-  for (int e = blk.begin; e < blk.end; ++e) {
-    const int i = el.conn[2 * e], j = el.conn[2 * e + 1];
-    const double d[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
-    const double L = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    const double L0 = el.restLength[e];
-    const double eps = (L - L0) / L0;
-    double T = blk.axialStiffness * std::max(0.0, eps);
-    if constexpr (Energy) energy += 0.5 * T * std::max(0.0, eps) * L0;
-    const double iL = 1.0 / L;
-    if constexpr (Viscous) {
-      const double rate = ((v[3 * j] - v[3 * i]) * d[0] + (v[3 * j + 1] - v[3 * i + 1]) * d[1] +
-                           (v[3 * j + 2] - v[3 * i + 2]) * d[2]) *
-                          iL / L0;
-      // Bulk viscosity b1 ρ c A L0 ε̇ with the element's own ρ and c: c² = E/ρ gives ρ c = E/c = E ·
-      // invWaveSpeed, which stays right when mass scaling raised ρ by s (and lowered c). The unscaled ρ would
-      // give a scaled cable the damping ratio b1/s instead of the b1 its damped stable step assumes.
-      T += (visc.beta + visc.bulkB1 * el.invWaveSpeed[e] * L0) * blk.axialStiffness * rate;
-    }
-    const double s = T * iL;
-    for (int k = 0; k < 3; ++k) {
-      f[3 * i + k] -= s * d[k];
-      f[3 * j + k] += s * d[k];
-    }
-  }
-  if constexpr (Energy) ctx.strainEnergy += energy;
+  axial::addBlock<Viscous, Energy, true>(el, blk.begin, blk.end, blk.axialStiffness, visc.beta, visc.bulkB1,
+                                         ctx);
 }
 
 // The batched kernel over the block's whole batches, the per-cable one over the remainder.

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "structure/elements/BarForces.hpp"
+#include "structure/elements/TwoNodeElements.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/model/PositiveValue.hpp"
 
@@ -119,76 +120,25 @@ std::unique_ptr<Effect> BarKind::makeForces(const Model& model, const ElementDam
 }
 
 void BarKind::addLumpedMass(const Model& model, std::vector<double>& mass) const {
-  const Bars& B = barsOf(model);
-  for (const BarBlock& b : B.blocks)
-    for (int e = b.begin; e < b.end; ++e) {
-      const double m = 0.5 * b.density * b.area * B.restLength[e];
-      mass[B.conn[2 * e]] += m;
-      mass[B.conn[2 * e + 1]] += m;
-    }
+  twonode::addLumpedMass(barsOf(model), mass);
 }
 
 double BarKind::referenceStableDt(const Model& model) const {
-  double dt = std::numeric_limits<double>::infinity();
-  const Bars& B = barsOf(model);
-  for (int e = 0; e < B.count; ++e) dt = std::min(dt, B.restLength[e] * B.invWaveSpeed[e]);
-  return dt;
+  return twonode::referenceStableDt(barsOf(model));
 }
 
 std::optional<LimitingElement> BarKind::limitingElementAt(const Model& model, int node) const {
-  const Bars& B = barsOf(model);
-  std::optional<LimitingElement> best;
-  for (int e = 0; e < B.count; ++e) {
-    if (B.conn[2 * e] != node && B.conn[2 * e + 1] != node) continue;
-    const double dt = B.restLength[e] * B.invWaveSpeed[e];
-    if (!best || dt < best->stableDt) best = LimitingElement{e, dt, B.restLength[e]};
-  }
-  return best;
+  return twonode::limitingElementAt(barsOf(model), node);
 }
 
 ScaledMass BarKind::scaleMass(Model& model, double need) const {
-  ScaledMass r;
   Bars* B = model.block<Bars>(name());
-  if (!B) return r;
-  std::vector<double>& mass = model.nodes.mass;
-  for (const BarBlock& b : B->blocks)
-    for (int e = b.begin; e < b.end; ++e) {
-      const double dt = B->restLength[e] * B->invWaveSpeed[e];
-      if (dt >= need) continue;
-      const double s = (need / dt) * (need / dt);  // c ∝ ρ^-1/2
-      const double extra = 0.5 * (s - 1.0) * b.density * b.area * B->restLength[e];
-      mass[B->conn[2 * e]] += extra;
-      mass[B->conn[2 * e + 1]] += extra;
-      r.added += 2.0 * extra;
-      B->invWaveSpeed[e] *= std::sqrt(s);
-      ++r.elements;
-    }
-  return r;
+  return B ? twonode::scaleMass(*B, model.nodes.mass, need) : ScaledMass{};
 }
 
 void BarKind::addStiffnessBounds(const Model& model, const double* x, std::vector<double>& dofRow,
                                  std::vector<double>& dofDiag) const {
-  const Bars& B = barsOf(model);
-  for (const BarBlock& b : B.blocks)
-    for (int e = b.begin; e < b.end; ++e) {
-      const int i = B.conn[2 * e], j = B.conn[2 * e + 1];
-      double d[3], L = 0;
-      for (int k = 0; k < 3; ++k) d[k] = x[3 * j + k] - x[3 * i + k], L += d[k] * d[k];
-      L = std::sqrt(L);
-      const double L0 = B.restLength[e];
-      // K = ka e⊗e + kg (I − e⊗e), kg = N/L; a compressed bar's negative kg is bounded by its magnitude.
-      const double ka = b.axialStiffness / L0, kg = std::abs(b.axialStiffness * (L - L0) / L0) / L;
-      for (int k = 0; k < 3; ++k) {
-        double row = 0;
-        for (int l = 0; l < 3; ++l) {
-          const double el = d[k] * d[l] / (L * L);
-          row += 2.0 * std::abs(ka * el + kg * ((k == l ? 1.0 : 0.0) - el));
-        }
-        const double diag = ka * d[k] * d[k] / (L * L) + kg * (1.0 - d[k] * d[k] / (L * L));
-        dofRow[3 * i + k] += row, dofRow[3 * j + k] += row;
-        dofDiag[3 * i + k] += diag, dofDiag[3 * j + k] += diag;
-      }
-    }
+  twonode::addStiffnessBounds<false>(barsOf(model), x, dofRow, dofDiag);
 }
 
 std::optional<CellSet> BarKind::outputCells(const Model& model) const {

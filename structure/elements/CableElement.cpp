@@ -8,6 +8,7 @@
 #include <set>
 
 #include "structure/elements/CableForces.hpp"
+#include "structure/elements/TwoNodeElements.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/model/MaterialKeys.hpp"
 #include "structure/model/PositiveValue.hpp"
@@ -109,76 +110,24 @@ std::unique_ptr<Effect> CableKind::makeForces(const Model& model, const ElementD
 }
 
 void CableKind::addLumpedMass(const Model& model, std::vector<double>& mass) const {
-  const Cables& C = model.cables;
-  for (const CableBlock& b : C.blocks)
-    for (int e = b.begin; e < b.end; ++e) {
-      const double m = 0.5 * b.density * b.area * C.restLength[e];
-      mass[C.conn[2 * e]] += m;
-      mass[C.conn[2 * e + 1]] += m;
-    }
+  twonode::addLumpedMass(model.cables, mass);
 }
 
 double CableKind::referenceStableDt(const Model& model) const {
-  double dt = std::numeric_limits<double>::infinity();
-  const Cables& C = model.cables;
-  for (int e = 0; e < C.count; ++e) dt = std::min(dt, C.restLength[e] * C.invWaveSpeed[e]);
-  return dt;
+  return twonode::referenceStableDt(model.cables);
 }
 
 std::optional<LimitingElement> CableKind::limitingElementAt(const Model& model, int node) const {
-  const Cables& C = model.cables;
-  std::optional<LimitingElement> best;
-  for (int e = 0; e < C.count; ++e) {
-    if (C.conn[2 * e] != node && C.conn[2 * e + 1] != node) continue;
-    const double dt = C.restLength[e] * C.invWaveSpeed[e];
-    if (!best || dt < best->stableDt) best = LimitingElement{e, dt, C.restLength[e]};
-  }
-  return best;
+  return twonode::limitingElementAt(model.cables, node);
 }
 
 ScaledMass CableKind::scaleMass(Model& model, double need) const {
-  ScaledMass r;
-  Cables& C = model.cables;
-  std::vector<double>& mass = model.nodes.mass;
-  for (const CableBlock& b : C.blocks)
-    for (int e = b.begin; e < b.end; ++e) {
-      const double dt = C.restLength[e] * C.invWaveSpeed[e];
-      if (dt >= need) continue;
-      const double s = (need / dt) * (need / dt);  // c ∝ ρ^-1/2
-      const double extra = 0.5 * (s - 1.0) * b.density * b.area * C.restLength[e];
-      mass[C.conn[2 * e]] += extra;
-      mass[C.conn[2 * e + 1]] += extra;
-      r.added += 2.0 * extra;
-      C.invWaveSpeed[e] *= std::sqrt(s);
-      ++r.elements;
-    }
-  return r;
+  return twonode::scaleMass(model.cables, model.nodes.mass, need);
 }
 
 void CableKind::addStiffnessBounds(const Model& model, const double* x, std::vector<double>& dofRow,
                                    std::vector<double>& dofDiag) const {
-  const Cables& C = model.cables;
-  for (const CableBlock& b : C.blocks)
-    for (int e = b.begin; e < b.end; ++e) {
-      const int i = C.conn[2 * e], j = C.conn[2 * e + 1];
-      double d[3], L = 0;
-      for (int k = 0; k < 3; ++k) d[k] = x[3 * j + k] - x[3 * i + k], L += d[k] * d[k];
-      L = std::sqrt(L);
-      const double L0 = C.restLength[e];
-      const double T0 = b.axialStiffness * std::max(0.0, (L - L0) / L0);
-      const double ka = b.axialStiffness / L0, kg = T0 / L;
-      for (int k = 0; k < 3; ++k) {
-        // K = ka e⊗e + kg (I − e⊗e) on the 2x2 node blocks [K −K; −K K]
-        double row = 0;
-        for (int l = 0; l < 3; ++l) {
-          const double el = d[k] * d[l] / (L * L);
-          row += 2.0 * std::abs(ka * el + kg * ((k == l ? 1.0 : 0.0) - el));
-        }
-        const double diag = ka * d[k] * d[k] / (L * L) + kg * (1.0 - d[k] * d[k] / (L * L));
-        dofRow[3 * i + k] += row, dofRow[3 * j + k] += row;
-        dofDiag[3 * i + k] += diag, dofDiag[3 * j + k] += diag;
-      }
-    }
+  twonode::addStiffnessBounds<true>(model.cables, x, dofRow, dofDiag);
 }
 
 void CableKind::addFields(const Model& model, const double* x, const std::set<std::string>& wanted,

@@ -46,6 +46,8 @@ VARIANTS = {
     "bulged": ({}, 0.25, "the arc R/b = 1, the cells bulged by a quarter of their width (the coupled canopy's skin)"),
     "bulged16": ({"cells": 16}, 0.25, "the arc R/b = 1, 16 cells (half as wide) bulged by a quarter of their width: "
                                       "the same bulge ratio, half the bulge"),
+    "bulged10": ({}, 0.10, "the arc R/b = 1, the cells bulged by a tenth of their width (the cloth 2.6 % wider than the "
+                           "rib spacing, against 15.9 % at a quarter): how much of the lift the bulge costs"),
     "trimmed": ({}, -1.0, "the canopy as a coupled run left it (--deformed RUN: its structure/ folder), the design's "
                           "skin moved to the run's last frame; alpha from its centre rib's chord"),
 }
@@ -295,7 +297,7 @@ def plot(path, png):
     pts = data["points"]
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.8))
     styles = {"coarse": "o-", "medium": "s--", "fine": "^:"}
-    colours = {"flat": "C0", "arc": "C1", "bulged": "C3", "bulged16": "C4"}
+    colours = COLOURS
     for v in VARIANTS:
         for lvl, solver, wall in [(lv, so, wa) for lv in styles for so in ("simple", "pimple")
                                   for wa in ("functions", "layers", "split", "layers3")]:
@@ -311,6 +313,8 @@ def plot(path, png):
             # error bars: the range over the last fifth of the iterations where the steady solver did not settle
             lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
             hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
+            if wall == "layers3" and v not in ("bulged",):
+                continue  # the layered rows of the other skins: plot_layers
             col = {"layers": "C2", "layers3": "k"}.get(wall, colours[v])
             fmt = {"split": "D-.", "layers3": "s:"}.get(wall, styles[lvl])
             ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=fmt, color=col, label=lab,
@@ -332,6 +336,50 @@ def plot(path, png):
     fig.suptitle("Rung 2: the rigid ram-air wing, kOmegaSST, Re 1e6, half domain: steady (simpleFoam) or time-averaged "
                  "(pimpleFoam); bars: range over the averaging window; Helmbold lines from alpha0 -4.15 deg "
                  "(studies/wing/wing_polar.py)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    print(f"wing_polar: {png}")
+
+
+COLOURS = {"flat": "C0", "arc": "C1", "bulged": "C3", "bulged16": "C4", "bulged10": "C2", "trimmed": "C5"}
+
+
+def plot_layers(path, png):
+    """Rung 2c: CL and CD against alpha of each skin on the layered wall (3 layers on the wall cell,
+    time-averaged), coarse and medium skin, with Helmbold x arc factor."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    data = json.loads(Path(path).read_text())
+    pts = [p for p in data["points"] if p.get("wall") == "layers3" and p.get("solver") == "pimple"]
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.8))
+    for v in ("arc", "bulged10", "bulged", "trimmed"):
+        for lvl, fmt in (("coarse", "o:"), ("medium", "s-")):
+            sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl], key=lambda p: p["alpha_deg"])
+            if not sel:
+                continue
+            a = [p["alpha_deg"] for p in sel]
+            lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
+            hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
+            lab = {"arc": "flat panels", "bulged10": "cut bulge 0.10", "bulged": "cut bulge 0.25 (the case's design)",
+                   "trimmed": "the coupled canopy's trimmed shape"}[v] + f", {lvl} skin"
+            ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=fmt, color=COLOURS[v], label=lab, capsize=3,
+                           mfc="none" if lvl == "coarse" else None)
+            ax[1].plot(a, [p["CD"] for p in sel], fmt, color=COLOURS[v], label=lab, mfc="none" if lvl == "coarse" else None)
+    ar = next((p["aspect_ratio"] for p in data["points"] if p["variant"] == "flat"), 3.0)
+    al = [-2 + 0.5 * i for i in range(25)]
+    a = helmbold(ar, 0.5)
+    ax[0].plot(al, [a * math.radians(x + 4.15) for x in al], "--", color="grey", lw=1,
+               label=f"Helmbold x arc factor ({a:.2f}/rad, alpha0 -4.15 deg)")
+    ax[0].set(xlabel="alpha, centre rib's chord [deg]", ylabel="CL (projected area of the skin)",
+              title="lift on the layered wall (y+ ~ 75 medium, ~ 140 coarse)")
+    ax[1].set(xlabel="alpha, centre rib's chord [deg]", ylabel="CD", title="drag")
+    for x in ax:
+        x.grid(alpha=0.3)
+    ax[0].legend(fontsize=7)
+    fig.suptitle("Rung 2c: the rigid wing's lift by the shape of its cells, kOmegaSST, Re 1e6, half domain, 3 prism "
+                 "layers, time-averaged over 1 s (bars: range) - studies/wing/wing_polar.py --plot-layers", fontsize=9)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     print(f"wing_polar: {png}")
@@ -393,7 +441,11 @@ def main():
     ap.add_argument("--collect", action="store_true", help="read finished points in OUT, run nothing")
     ap.add_argument("--plot", action="store_true", help="only the plot from the JSON")
     ap.add_argument("--table", action="store_true", help="only the markdown table of slopes from the JSON")
+    ap.add_argument("--plot-layers", metavar="PNG", help="only rung 2c's figure (the skins on the layered wall)")
     a = ap.parse_args()
+    if a.plot_layers:
+        plot_layers(a.json, a.plot_layers)
+        return 0
     if a.plot or a.table:
         if a.plot:
             plot(a.json, a.png)

@@ -12,6 +12,8 @@ Checks:
    statistics in summary.json are those of the CSV's rows (recomputed here); the drawn winds lie in their range
    and their mean speed is the range's middle within 4 standard errors; without wind and release spread every
    run lands where the nominal flight lands (1e-6 m) and the spread is 0.
+4. A misspelt glide control, gain key or guidance key, a bad turn brake, no runs, a reversed wind range and a
+   negative spread end with exit 2 naming the file, line and key.
 Usage: test_ramair_guided.py FSI WORK_DIR
 """
 import csv
@@ -128,6 +130,22 @@ def main(fsi, work):
             fail(f"no spread: run {r['run']:.0f} lands at ({r['landing_north_m']}, {r['landing_east_m']}), nominal {end}")
     if max(z["monte_carlo"]["sd_ne_m"]) > 1e-6:
         fail(f"no spread: standard deviations {z['monte_carlo']['sd_ne_m']}")
+    # 4. Bad guidance and Monte Carlo input: exit 2, the file, line and key.
+    text = open(os.path.join(CASE, "ramair-kt.flight.yaml")).read()
+    bad = os.path.join(work, "bad.yaml")
+    for old, new, expect in (("    control: incidence", "    control: incidance", "incidance"),
+                             ("gains: {kp: 2.0,", "gains: {kq: 2.0,", "kq"),
+                             ("  yaw_rate_gains: {kp: 5,", "  yaw_rate_gain: {kp: 5,", "yaw_rate_gain"),
+                             ("  right_turn_brake: right", "  right_turn_brake: up", "right_turn_brake"),
+                             ("  runs: 50", "  runs: 0", "runs"),
+                             ("  wind_speed: [0, 3]", "  wind_speed: [3, 0]", "wind_speed"),
+                             ("  release_sd: [30, 30, 10]", "  release_sd: [30, -30, 10]", "release_sd")):
+        if old not in text:
+            fail(f"the case file has no {old!r}")
+        open(bad, "w").write(text.replace(old, new))
+        r = subprocess.run([fsi, "fly", bad, "--out", os.path.join(work, "bad")], capture_output=True, text=True)
+        if r.returncode != 2 or "bad.yaml:" not in r.stderr or expect not in r.stderr:
+            fail(f"{new.strip()!r}: exit {r.returncode}, {r.stderr.strip()!r}")
     print("flight.ramair-guided: passed")
 
 

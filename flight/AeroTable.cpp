@@ -50,7 +50,7 @@ AeroCoefficients AeroTable::at(double a, double beta, double ds, double da, doub
   c.CL = interpolate(alpha, CL, a) + CL_ds * ds;
   c.CD = interpolate(alpha, CD, a) + CD_ds * ds;
   c.Cm = interpolate(alpha, Cm, a) + Cm_ds * ds + Cm_q * q * hc;
-  c.CY = CY_beta * beta;
+  c.CY = CY_beta * beta + CY_da * da;
   c.Cl = Cl_beta * beta + Cl_p * p * hb + Cl_da * da;
   c.Cn = Cn_beta * beta + Cn_r * r * hb + Cn_da * da;
   return c;

@@ -4,7 +4,7 @@
 // ends) at zero brake; the controls and the lateral motion enter as derivatives (per radian, per unit brake):
 //
 //   CL = CL(α) + CL_δs δs          CD = CD(α) + CD_δs δs          Cm = Cm(α) + Cm_δs δs + Cm_q q̂
-//   CY = CY_β β                    Cl = Cl_β β + Cl_p p̂ + Cl_δa δa      Cn = Cn_β β + Cn_r r̂ + Cn_δa δa
+//   CY = CY_β β + CY_δa δa         Cl = Cl_β β + Cl_p p̂ + Cl_δa δa      Cn = Cn_β β + Cn_r r̂ + Cn_δa δa
 //
 // with the symmetric brake δs = (δl + δr)/2 and the differential brake δa = δr − δl (0 … 1 each: a fraction
 // of the full brake travel), the non-dimensional rates p̂ = p b/(2V), q̂ = q c/(2V), r̂ = r b/(2V). Reference:
@@ -30,7 +30,7 @@ struct AeroTable {
   double Cm_q = 0;                               ///< per q̂
   double CY_beta = 0, Cl_beta = 0, Cn_beta = 0;  ///< per radian of sideslip
   double Cl_p = 0, Cn_r = 0;                     // per p̂, r̂
-  double Cl_da = 0, Cn_da = 0;                   ///< per unit differential brake
+  double CY_da = 0, Cl_da = 0, Cn_da = 0;        ///< per unit differential brake
   // Reference geometry.
   double area = 1, span = 1, chord = 1;  ///< S [m²], b [m], c [m]
 

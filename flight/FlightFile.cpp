@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "flight/GlideControls.hpp"
 #include "structure/model/Error.hpp"
 #include "structure/scene/YamlAccess.hpp"
 
@@ -51,8 +52,9 @@ void readSystem(const YamlMap& m, FlightSystem& s) {
   if (s.lineDragArea < 0) m.failAt("line_drag_area", "must not be negative");
   s.airDensity = m.positive("air_density", s.airDensity);
   s.gravity = m.number("gravity", s.gravity);
+  s.munkMoment = m.boolean("munk_moment", s.munkMoment);
   m.finish({"mass", "inertia", "added_mass", "added_inertia", "canopy_point", "payload_point",
-            "payload_drag_area", "line_drag_area", "air_density", "gravity"});
+            "payload_drag_area", "line_drag_area", "air_density", "gravity", "munk_moment"});
 }
 
 void readAero(const YamlMap& m, AeroTable& a) {
@@ -72,10 +74,11 @@ void readAero(const YamlMap& m, AeroTable& a) {
   a.Cn_beta = m.number("Cn_beta", 0.0);
   a.Cl_p = m.number("Cl_p", 0.0);
   a.Cn_r = m.number("Cn_r", 0.0);
+  a.CY_da = m.number("CY_differential_brake", 0.0);
   a.Cl_da = m.number("Cl_differential_brake", 0.0);
   a.Cn_da = m.number("Cn_differential_brake", 0.0);
   m.finish({"area", "span", "chord", "alpha", "CL", "CD", "Cm", "CL_brake", "CD_brake", "Cm_brake", "Cm_q",
-            "CY_beta", "Cl_beta", "Cn_beta", "Cl_p", "Cn_r", "Cl_differential_brake",
+            "CY_beta", "Cl_beta", "Cn_beta", "Cl_p", "Cn_r", "CY_differential_brake", "Cl_differential_brake",
             "Cn_differential_brake"});
   try {
     a.check("aerodynamics");
@@ -112,7 +115,15 @@ void readBrakes(const YamlMap& m, BrakeSchedule& b) {
   b.time = m.numbers("time");
   b.left = m.numbers("left");
   b.right = m.numbers("right");
-  m.finish({"time", "left", "right"});
+  if (m.has("incidence")) {
+    for (double deg : m.numbers("incidence")) b.incidence.push_back(deg * kDeg);
+    if (b.incidence.size() != b.time.size())
+      m.failAt("incidence", fmt::format("needs one value per 'time' ({}) in degrees", b.time.size()));
+    for (double v : b.incidence)
+      if (std::abs(v) > 30 * kDeg)
+        m.failAt("incidence", "is the rigging's change: at most 30 deg either way");
+  }
+  m.finish({"time", "left", "right", "incidence"});
   if (b.left.size() != b.time.size() || b.right.size() != b.time.size())
     m.fail(fmt::format("'left' and 'right' need one value per 'time' ({})", b.time.size()));
   for (std::size_t i = 0; i < b.time.size(); ++i) {
@@ -134,6 +145,43 @@ PidGains readGains(const YamlMap& m, const std::string& key, PidGains g) {
   return g;
 }
 
+void readGlideSlope(const YamlMap& m, GlideSlopeParams& g) {
+  std::vector<std::string> names;
+  for (const GlideControlKind& k : glideControlKinds()) names.push_back(k.name);
+  g.control = m.choice("control", names);
+  const GlideControlKind& kind = *findGlideControl(g.control);
+  g.gains = readGains(m, "gains", g.gains);
+  g.min = m.number("min", kind.defaultMin);
+  g.max = m.number("max", kind.defaultMax);
+  g.trim = m.number("trim", 0.5 * (g.min + g.max));
+  m.finish({"control", "gains", "trim", "min", "max"});
+  for (const auto& [key, v] : {std::pair{"min", g.min}, std::pair{"max", g.max}})
+    if (!(v >= kind.lowest && v <= kind.highest))
+      m.failAt(key, fmt::format("is {}; valid for {}: {} to {} ({})", v, g.control, kind.lowest, kind.highest,
+                                kind.unit));
+  if (!(g.min < g.max)) m.failAt("max", "must exceed min");
+  if (!(g.trim >= g.min && g.trim <= g.max)) m.failAt("trim", "must lie between min and max");
+}
+
+void readMonteCarlo(const YamlMap& m, MonteCarloParams& p) {
+  p.runs = int(m.integer("runs", structure::IntRange{1, 100000}));
+  p.seed = std::uint64_t(m.integer("seed", 1, structure::IntRange{0, 1000000000000L}));
+  auto range = [&](const char* key, std::array<double, 2> fallback, double lo, double hi, const char* unit) {
+    if (!m.has(key)) return fallback;
+    const std::vector<double> v = m.numbers(key);
+    if (v.size() != 2 || !(v[0] <= v[1]) || v[0] < lo || v[1] > hi)
+      m.failAt(key, fmt::format("needs [low, high] with {} <= low <= high <= {} ({})", lo, hi, unit));
+    return std::array<double, 2>{v[0], v[1]};
+  };
+  p.windSpeed = range("wind_speed", p.windSpeed, 0, 100, "m/s");
+  p.windFrom = range("wind_from", p.windFrom, -360, 720, "deg from north");
+  const auto sd = m.vec3("release_sd", p.releaseSd);
+  for (double v : sd)
+    if (!(v >= 0)) m.failAt("release_sd", "standard deviations [north, east, altitude] must not be negative");
+  p.releaseSd = sd;
+  m.finish({"runs", "seed", "wind_speed", "wind_from", "release_sd"});
+}
+
 void readGuidance(const YamlMap& m, GuidanceParams& g) {
   const YAML::Node list = m.raw("waypoints");
   if (!list.IsSequence() || list.size() == 0)
@@ -153,20 +201,24 @@ void readGuidance(const YamlMap& m, GuidanceParams& g) {
   g.maxBrake = m.positive("max_brake", g.maxBrake);
   if (g.maxBrake > 1) m.failAt("max_brake", "is a fraction of the full brake: at most 1");
   g.rate = m.positive("rate", g.rate);
+  g.rightTurnPullsRight = m.choice("right_turn_brake", {"right", "left"}, "right") == "right";
+  if (m.has("glide_slope")) readGlideSlope(m.map("glide_slope"), g.glideSlope);
   m.finish({"waypoints", "acceptance_radius", "course_gains", "max_yaw_rate", "yaw_rate_gains", "max_brake",
-            "rate"});
+            "rate", "right_turn_brake", "glide_slope"});
 }
 
 }  // namespace
 
 Controls BrakeSchedule::at(double t) const {
   if (time.empty()) return {};
-  if (t <= time.front()) return {left.front(), right.front()};
-  if (t >= time.back()) return {left.back(), right.back()};
+  const auto inc = [&](std::size_t i) { return incidence.empty() ? 0.0 : incidence[i]; };
+  if (t <= time.front()) return {left.front(), right.front(), inc(0)};
+  if (t >= time.back()) return {left.back(), right.back(), inc(time.size() - 1)};
   std::size_t i = 1;
   while (time[i] < t) ++i;
   const double s = (t - time[i - 1]) / (time[i] - time[i - 1]);
-  return {(1 - s) * left[i - 1] + s * left[i], (1 - s) * right[i - 1] + s * right[i]};
+  return {(1 - s) * left[i - 1] + s * left[i], (1 - s) * right[i - 1] + s * right[i],
+          (1 - s) * inc(i - 1) + s * inc(i)};
 }
 
 FlightCase readFlightString(const std::string& yaml, const std::string& name,
@@ -188,6 +240,7 @@ FlightCase readFlightString(const std::string& yaml, const std::string& name,
     if (top.has("brakes")) top.failAt("guidance", "and 'brakes' both set the brakes: keep one");
     readGuidance(top.map("guidance"), c.guidance);
   }
+  if (top.has("monte_carlo")) readMonteCarlo(top.map("monte_carlo"), c.monteCarlo);
   if (top.has("time")) {
     const YamlMap t = top.map("time");
     c.endTime = t.positive("end", c.endTime);
@@ -198,7 +251,7 @@ FlightCase readFlightString(const std::string& yaml, const std::string& name,
     if (c.step > c.outputInterval) t.failAt("step", "must not exceed output_interval");
     if (c.endTime / c.step > 1e8) t.failAt("step", "makes more than 1e8 steps");
   }
-  top.finish({"system", "aerodynamics", "wind", "start", "brakes", "guidance", "time"});
+  top.finish({"system", "aerodynamics", "wind", "start", "brakes", "guidance", "monte_carlo", "time"});
   return c;
 }
 

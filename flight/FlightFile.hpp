@@ -9,12 +9,15 @@
 
 #include "flight/FlightSystem.hpp"
 #include "flight/Guidance.hpp"
+#include "flight/MonteCarlo.hpp"
 
 namespace fsi::flight {
 
-/// Brake inputs as a piecewise-linear table of time [s] against left and right brake (0 … 1).
+/// Brake inputs as a piecewise-linear table of time [s] against left and right brake (0 … 1) and, optionally,
+/// the incidence (the rigging's change, radians; docs/FLIGHT.md).
 struct BrakeSchedule {
   std::vector<double> time, left, right;  ///< empty: no brake
+  std::vector<double> incidence;          ///< empty or one per time [rad]
   Controls at(double t) const;
 };
 
@@ -25,6 +28,7 @@ struct FlightCase {
   FlightState initial;
   BrakeSchedule brakes;
   GuidanceParams guidance;      ///< waypoints given: the autopilot flies the brakes (no `brakes` table then)
+  MonteCarloParams monteCarlo;  ///< runs > 0: the landing dispersion over random winds and release points
   double endTime = 600;         ///< [s]
   double step = 0.01;           ///< RK4 step [s]
   double outputInterval = 0.1;  ///< [s]

@@ -7,8 +7,8 @@ namespace fsi::flight {
 namespace {
 
 /// Aerodynamic force and moment (about the mass centre) of the canopy at the air velocity `va` [body] there.
-void canopyLoads(const FlightSystem& s, const Controls& c, const Vec3& va, const Vec3& rates, Vec3& force,
-                 Vec3& moment, FlightReading* reading) {
+void canopyLoads(const FlightSystem& s, const Controls& c, const Vec3& canopyPoint, const Vec3& va,
+                 const Vec3& rates, Vec3& force, Vec3& moment, FlightReading* reading) {
   const double v = va.norm();
   if (!(v > 1e-9)) return;
   const Vec3 dir = va / v;  // the air's velocity relative to the canopy is −va: the body moves along va
@@ -25,7 +25,7 @@ void canopyLoads(const FlightSystem& s, const Controls& c, const Vec3& va, const
       qS * (-k.CD * dir + k.CL * lift + k.CY * side) - 0.5 * s.airDensity * s.lineDragArea * v * va;
   const Vec3 m(qS * s.aero.span * k.Cl, qS * s.aero.chord * k.Cm, qS * s.aero.span * k.Cn);
   force += f;
-  moment += m + s.canopyPoint.cross(f);
+  moment += m + canopyPoint.cross(f);
   if (reading) {
     reading->airspeed = v;
     reading->alpha = alpha;
@@ -45,13 +45,17 @@ StateRate stateRate(const FlightSystem& s, const Wind& wind, const Controls& c, 
   Vec3 force = rot.transpose() * Vec3(0, 0, s.mass * s.gravity);
   Vec3 moment = Vec3::Zero();
   if (s.aerodynamics) {
-    canopyLoads(s, c, v + w.cross(s.canopyPoint) - windBody, w, force, moment, reading);
+    const Vec3 canopy = c.incidence == 0
+                            ? s.canopyPoint
+                            : Vec3(Eigen::AngleAxisd(c.incidence, Vec3::UnitY()) * s.canopyPoint);
+    canopyLoads(s, c, canopy, v + w.cross(canopy) - windBody, w, force, moment, reading);
     const Vec3 vp = v + w.cross(s.payloadPoint) - windBody;
     const Vec3 fp = -0.5 * s.airDensity * s.payloadDragArea * vp.norm() * vp;
     force += fp;
     moment += s.payloadPoint.cross(fp);
   }
   if (reading) {
+    reading->aeroForce = force - rot.transpose() * Vec3(0, 0, s.mass * s.gravity);
     reading->force = force;
     reading->moment = moment;
   }
@@ -60,7 +64,7 @@ StateRate stateRate(const FlightSystem& s, const Wind& wind, const Controls& c, 
   const Vec3 Ava = A.cwiseProduct(va);
   const Vec3 trans = force - s.mass * w.cross(v) - A.cwiseProduct(w.cross(windBody)) - w.cross(Ava);
   const Mat3 J = s.inertia + Mat3(s.addedInertia.asDiagonal());
-  const Vec3 rot_rhs = moment - w.cross(J * w) - va.cross(Ava);
+  const Vec3 rot_rhs = moment - w.cross(J * w) - (s.munkMoment ? Vec3(va.cross(Ava)) : Vec3::Zero());
   StateRate r;
   r.velocity = (Vec3::Constant(s.mass) + A).cwiseInverse().cwiseProduct(trans);
   r.rates = J.ldlt().solve(rot_rhs);

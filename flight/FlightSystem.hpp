@@ -39,6 +39,10 @@ struct FlightSystem {
   double airDensity = 1.225;         ///< ρ [kg/m³]
   double gravity = 9.80665;          ///< g [m/s²]
   bool aerodynamics = true;          ///< false: gravity and inertia only (checks)
+  /// false: the Munk moment −v_a × A v_a is left out, for tables whose moments come from steady flow
+  /// solutions (they contain the steady moment of the air's momentum, of which the Munk moment is the
+  /// potential-flow part; with both it would count twice). The unsteady apparent-mass terms stay.
+  bool munkMoment = true;
 };
 
 struct FlightState {
@@ -50,6 +54,10 @@ struct FlightState {
 
 struct Controls {
   double brakeLeft = 0, brakeRight = 0;  ///< fraction of the full brake travel, 0 … 1
+  /// The rigging's change [rad]: the canopy point turned by this angle about the body's y axis through the
+  /// mass centre (positive: the canopy moves back over the payload, the lines tilt back, the trim angle of
+  /// attack falls and the glide steepens, as the coupled runs' rigging angle does; docs/FLIGHT.md).
+  double incidence = 0;
 };
 
 /// What the model sees at one instant (for output and guidance).
@@ -58,6 +66,7 @@ struct FlightReading {
   double alpha = 0, beta = 0;  ///< [rad]
   AeroCoefficients coefficients;
   Vec3 force = Vec3::Zero(), moment = Vec3::Zero();  ///< external, body axes, about the mass centre
+  Vec3 aeroForce = Vec3::Zero();  ///< canopy, lines and payload (the force without gravity), body axes
 };
 
 /// Time derivative of the state: d(position)/dt (world), d(attitude)/dt (as a quaternion's 4 numbers w, x, y,

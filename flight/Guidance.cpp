@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "flight/GlideControls.hpp"
+
 namespace fsi::flight {
 
 double wrapAngle(double a) {
@@ -42,7 +44,19 @@ Controls Guidance::update(double t, const FlightState& x) {
   lastRateError_ = re;
   const double brake = std::clamp(p_.yawRate.kp * re + p_.yawRate.ki * rateIntegral_ + p_.yawRate.kd * dre,
                                   -p_.maxBrake, p_.maxBrake);
-  held_ = brake >= 0 ? Controls{0.0, brake} : Controls{-brake, 0.0};
+  const bool pullRight = (brake >= 0) == p_.rightTurnPullsRight;
+  held_ = pullRight ? Controls{0.0, std::abs(brake)} : Controls{std::abs(brake), 0.0};
+  if (p_.glideSlope.enabled()) {
+    // The glide path: from here over the waypoints still ahead to the target.
+    double remaining = d.norm();
+    for (std::size_t i = current_ + 1; i < p_.waypoints.size(); ++i)
+      remaining += std::hypot(p_.waypoints[i][0] - p_.waypoints[i - 1][0],
+                              p_.waypoints[i][1] - p_.waypoints[i - 1][1]);
+    const double toDeg = 180.0 / M_PI;
+    requiredGlide_ = std::atan2(std::max(0.0, -x.position.z()), remaining) * toDeg;
+    const double flown = std::atan2(ground.z(), ground.head<2>().norm()) * toDeg;
+    findGlideControl(p_.glideSlope.control)->apply(held_, glide_.update(dt, requiredGlide_, flown));
+  }
   return held_;
 }
 

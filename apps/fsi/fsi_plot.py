@@ -599,80 +599,6 @@ def plot_coupled_case(case_dir, out_dir, color):
     return index
 
 
-# ---------------------------------------------------------------------------------------------------------
-
-
-def plot_flight(run_dir, out_dir):
-    """A flight (fsi fly --out DIR): the 3D path, the ground track with start, end and wind, and the flight's
-    history (altitude, airspeed and glide angle, attitude, brakes)."""
-    index = Index("flight", run_dir, out_dir)
-    path = os.path.join(run_dir, "trajectory.csv")
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    if data.size < 2:
-        raise InputError(f"{path}: fewer than two rows")
-    t, north, east, alt = data["time_s"], data["north_m"], data["east_m"], data["altitude_m"]
-    summary = {}
-    spath = os.path.join(run_dir, "summary.json")
-    if os.path.isfile(spath):
-        with open(spath) as f:
-            summary = json.load(f)
-    title = os.path.basename(summary.get("flight_file", run_dir))
-    fig = plt.figure(figsize=(7, 6))
-    ax = fig.add_subplot(111, projection="3d")
-    ax.plot(east, north, alt, "b-", lw=1.2, label="path")
-    ax.plot(east, north, 0 * alt, color="0.6", lw=0.8, label="ground track")
-    ax.scatter([east[0]], [north[0]], [alt[0]], color="g", label="start")
-    ax.scatter([east[-1]], [north[-1]], [alt[-1]], color="r", label="end")
-    ax.set_xlabel("east [m]")
-    ax.set_ylabel("north [m]")
-    ax.set_zlabel("altitude [m]")
-    ax.set_title(f"{title}: flight path")
-    ax.legend(loc="upper left")
-    index.save(fig, "flight_path.png", "flight path (3D)", [("path", len(t))])
-    fig, ax = plt.subplots(figsize=(6.5, 6))
-    ax.plot(east, north, "b-", label="ground track")
-    ax.plot(east[0], north[0], "go", label="start")
-    ax.plot(east[-1], north[-1], "rs", label="landing" if summary.get("landed") else "end")
-    for w in summary.get("waypoints_ne_m", []):
-        ax.plot(w[1], w[0], "k^")
-    wind = summary.get("wind_steady_ned_m_s")
-    if wind and (wind[0] or wind[1]):
-        span = max(np.ptp(east), np.ptp(north), 1.0)
-        ax.annotate("", xy=(east[0] + 0.15 * span * wind[1] / np.hypot(wind[0], wind[1]),
-                            north[0] + 0.15 * span * wind[0] / np.hypot(wind[0], wind[1])),
-                    xytext=(east[0], north[0]), arrowprops=dict(arrowstyle="->", color="c", lw=2))
-        ax.plot([], [], "c-", lw=2, label=f"wind {np.hypot(wind[0], wind[1]):.1f} m/s")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("east [m]")
-    ax.set_ylabel("north [m]")
-    ax.set_title(f"{title}: ground track")
-    ax.legend()
-    index.save(fig, "ground_track.png", "ground track", [("track", len(t))])
-    fig, axes = plt.subplots(4, 1, figsize=(8, 9), sharex=True)
-    axes[0].plot(t, alt, "k-")
-    axes[0].set_ylabel("altitude [m]")
-    axes[1].plot(t, data["airspeed_m_s"], "b-", label="airspeed")
-    axes[1].plot(t, data["descent_rate_m_s"], "r-", label="descent rate")
-    axes[1].set_ylabel("[m/s]")
-    axes[1].legend()
-    glide = np.degrees(np.arctan2(data["descent_rate_m_s"], np.maximum(data["ground_speed_m_s"], 1e-9)))
-    axes[2].plot(t, data["roll_deg"], label="roll")
-    axes[2].plot(t, data["pitch_deg"], label="pitch")
-    axes[2].plot(t, data["alpha_deg"], label="angle of attack")
-    axes[2].plot(t, glide, label="glide angle over ground")
-    axes[2].set_ylabel("[deg]")
-    axes[2].legend(ncol=2)
-    axes[3].plot(t, data["brake_left"], label="left brake")
-    axes[3].plot(t, data["brake_right"], "--", label="right brake")
-    axes[3].set_ylabel("brake [0-1]")
-    axes[3].set_xlabel("time [s]")
-    axes[3].legend()
-    axes[0].set_title(f"{title}: flight history")
-    fig.tight_layout()
-    index.save(fig, "flight_history.png", "altitude, speeds, angles, brakes", [("rows", len(t))])
-    return index
-
-
 def main(argv):
     ap = argparse.ArgumentParser(prog="fsi plot", description="PNG plots of a structure run or a coupled case")
     ap.add_argument("run_dir", help="output folder of `fsi run` or `fsi fly`, or a coupled OpenFOAM case folder")
@@ -685,7 +611,10 @@ def main(argv):
         raise InputError(f"{run_dir}: no such folder")
     if os.path.isfile(os.path.join(run_dir, "trajectory.csv")):  # a flight (fsi fly)
         load_modules()
-        index = plot_flight(run_dir, args.out or os.path.join(run_dir, "plots"))
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import fsi_plot_flight  # noqa: E402 (beside this script: share/fsi or apps/fsi)
+        index = fsi_plot_flight.plot_flight(run_dir, args.out or os.path.join(run_dir, "plots"), Index, plt, np,
+                                            InputError)
         index.write()
         return 0
     structure_run = os.path.isfile(os.path.join(run_dir, "results.h5"))

@@ -439,10 +439,11 @@ int flyCommand(const fs::path& file, const fs::path& outDir, const std::vector<s
   const fsi::flight::FlightResult r = fsi::flight::runFlight(c, outDir, quiet);
   fmt::print(
       "{}: {} after {:.1f} s at north {:.1f} m, east {:.1f} m{}; glide ratio over the last fifth {:.2f}, "
-      "airspeed {:.2f} m/s, descent {:.2f} m/s\n{}/trajectory.csv, summary.json (plots: fsi plot {})\n",
+      "airspeed {:.2f} m/s, descent {:.2f} m/s\n{}/trajectory.csv, summary.json, summary.md{} (plots: fsi "
+      "plot {})\n",
       file.string(), r.landed ? "landed" : "ended", r.time, r.landing.x(), r.landing.y(),
       r.landed ? "" : fmt::format(", altitude {:.1f} m", -r.landing.z()), r.glideRatio, r.airspeed,
-      r.descentRate, outDir.string(), outDir.string());
+      r.descentRate, outDir.string(), c.monteCarlo.enabled() ? ", monte_carlo.csv" : "", outDir.string());
   return 0;
 }
 

@@ -4,7 +4,8 @@
 Checks: the run lands and writes trajectory.csv and summary.json; in the steady straight glide before the
 brake (20-28 s) the glide angle over the ground is the force balance's, tan(gamma) = (CD + (CD A)_payload+lines
 / S) / CL with the CL, CD the run reports at that instant, and the airspeed is sqrt(2 W / (rho S C_R)); the
-right brake turns the system right (heading increases); `fsi plot` draws the three pictures; bad input gets
+right brake turns the system right (heading increases); the symmetric-brake glide-slope loop lands on a
+target the open glide overflies; `fsi plot` draws the three pictures; bad input gets
 exit 2 with the file, line and key.
 Usage: test_fly.py FSI WORK_DIR
 """
@@ -90,6 +91,25 @@ def main(fsi, work):
                  f"(allowed {allowed:.1f} m)")
         print(f"guided, cross wind {wind} m/s: lands {s['miss_distance_m']:.1f} m from the target "
               f"(allowed {allowed:.1f} m; full-brake turn radius {radius:.1f} m)")
+    # Glide-slope control by the symmetric brake: a target straight ahead on an 18 deg path (the open glide is
+    # 17.1 deg, 18.9 deg at 0.6 brake) is overflown without the loop (by h (cot 17.1 - cot 18) = 35 m) and
+    # reached with it (within 5 m).
+    for loop, allowed in ((False, None), (True, 5.0)):
+        gout = os.path.join(work, f"glide-slope-{loop}")
+        sets = ["--set", "guidance.waypoints=[[615.5,0]]"]
+        if loop:
+            sets += ["--set", "guidance.glide_slope.control=symmetric_brake", "--set", "guidance.glide_slope.trim=0",
+                     "--set", "guidance.glide_slope.gains.kp=0.1", "--set", "guidance.glide_slope.gains.ki=0.02"]
+        r = subprocess.run([fsi, "fly", guided, "--out", gout, "-q"] + sets, capture_output=True, text=True)
+        if r.returncode != 0:
+            fail(f"glide slope {loop}: exit {r.returncode}: {r.stderr}")
+        s = json.load(open(os.path.join(gout, "summary.json")))
+        print(f"target on an 18 deg path, glide-slope loop {'on' if loop else 'off'}: lands {s['miss_distance_m']:.2f} m "
+              f"from it, {s['end_point_ned_m'][0] - 615.5:+.1f} m along the track")
+        if loop and not s["miss_distance_m"] <= allowed:
+            fail(f"the symmetric-brake glide-slope loop lands {s['miss_distance_m']:.2f} m from the target")
+        if not loop and not 25 <= s["end_point_ned_m"][0] - 615.5 <= 45:
+            fail(f"without the loop the glide ends {s['end_point_ned_m'][0] - 615.5:+.1f} m past the target, not ~35")
     r = subprocess.run([fsi, "plot", out], capture_output=True, text=True)
     if r.returncode != 0:
         fail(f"fsi plot exited {r.returncode}: {r.stderr}")

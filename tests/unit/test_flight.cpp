@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "flight/FlightSystem.hpp"
+#include "flight/GlideSlope.hpp"
 #include "structure/model/Error.hpp"
 
 namespace fsi::flight {
@@ -190,6 +191,47 @@ TEST(Flight, TablesAreChecked) {
   EXPECT_DOUBLE_EQ(t.at(0.05, 0, 0, 0, 0, 0, 0, 10).CL, 0.4);
   EXPECT_DOUBLE_EQ(t.at(-1.0, 0, 0, 0, 0, 0, 0, 10).CL, 0.2);
   EXPECT_DOUBLE_EQ(t.at(1.0, 0, 0, 0, 0, 0, 0, 10).CL, 0.8);
+}
+
+// The incidence turns the canopy point about the body's y axis through the mass centre: the state's rate is
+// that of the same system with its canopy point turned, and without incidence it is not.
+TEST(Flight, IncidenceTurnsTheCanopyPointAboutTheMassCentre) {
+  FlightSystem s = glider();
+  s.canopyPoint = Vec3(0.3, 0.2, -6);
+  s.addedMass = Vec3(1, 2, 8);
+  FlightState x = moving();
+  const double incidence = 0.07;
+  FlightSystem turned = s;
+  turned.canopyPoint = Eigen::AngleAxisd(incidence, Vec3::UnitY()) * s.canopyPoint;
+  Controls c;
+  c.incidence = incidence;
+  const StateRate a = stateRate(s, Wind{}, c, 0, x), b = stateRate(turned, Wind{}, Controls{}, 0, x);
+  EXPECT_LT((a.rates - b.rates).norm(), 1e-12 * b.rates.norm());
+  EXPECT_LT((a.velocity - b.velocity).norm(), 1e-12 * b.velocity.norm());
+  EXPECT_GT((stateRate(s, Wind{}, Controls{}, 0, x).rates - b.rates).norm(), 1e-3 * b.rates.norm());
+  // Without the Munk moment the rotational rate changes by exactly (J + A_r)^-1 (v_a x A v_a).
+  FlightSystem noMunk = turned;
+  noMunk.munkMoment = false;
+  const Vec3 va = x.velocity, munk = va.cross(Vec3(turned.addedMass.cwiseProduct(va)));
+  const Mat3 J = turned.inertia + Mat3(turned.addedInertia.asDiagonal());
+  const Vec3 diff = stateRate(noMunk, Wind{}, Controls{}, 0, x).rates - b.rates;
+  EXPECT_LT((diff - J.ldlt().solve(munk)).norm(), 1e-10 * diff.norm());
+}
+
+// The glide-slope loop: proportional around the trim, clamped, and its integral held while the output sits in
+// a limit (anti-windup): after a long saturated stretch a reversed error leaves the limit at once.
+TEST(Flight, GlideSlopeLoopIsClampedWithoutWindup) {
+  GlideSlopeParams p;
+  p.control = "incidence";
+  p.gains = {2.0, 0.5, 0.0, 100.0};
+  p.trim = 0;
+  p.min = -5;
+  p.max = 3;
+  GlideSlope g(p);
+  EXPECT_DOUBLE_EQ(g.update(0.1, 15.0, 14.5), 2.0 * 0.5 + 0.5 * 0.5 * 0.1);
+  for (int i = 0; i < 200; ++i) EXPECT_DOUBLE_EQ(g.update(0.1, 20.0, 14.0), 3.0);
+  const double back = g.update(0.1, 14.0, 15.0);  // now below the path: shallower at once
+  EXPECT_LT(back, 0.0);
 }
 
 }  // namespace

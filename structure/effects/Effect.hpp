@@ -42,7 +42,7 @@ struct Connectivity {
   int nodesPerItem = 1;          ///< item i writes to nodes[k i, k i + k), k = nodesPerItem
   const int* nodes = nullptr;    ///< model node numbers; null with k = 1: item i writes node i alone
   const int* offsets = nullptr;  ///< if set, instead of k: item i writes nodes[offsets[i], offsets[i + 1])
-  int batch = 1;                 ///< the kernel takes items in batches this wide: ranges start at multiples
+  int batch = 1;  ///< the kernel takes items in batches this wide: ranges (of both passes) start at multiples
   /// A few flops per item (gravity's m g): however many items, not worth waking threads for on its own.
   bool light = false;
   /// A small set of these items reaches across the node numbering (lines from a canopy to a confluence

@@ -6,11 +6,14 @@
 #include <stdexcept>
 #include <utility>
 
+#include "structure/model/Lanes.hpp"
+
 namespace fsi::structure {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr int kLaneWidth = lanes::kWidth;
 
 inline void sub(const double* a, const double* b, double* r) {
   r[0] = a[0] - b[0];
@@ -231,58 +234,99 @@ FabricBending::FabricBending(std::string label, const std::vector<int>& conn, co
       hingeStiffness_[std::size_t(T.hinge[std::size_t(e)])] += T.weight * k;
     }
   }
-  hingeTris_.assign(2 * theta0_.size(), -1);
-  energyAt_.assign(2 * theta0_.size(), 0);
-  for (std::size_t t = 0; t < nt; ++t) {
-    const std::array<int, 3>& th = tris_[t].hinge;
-    if (tris_[t].weight == 0) continue;
-    int lowest = -1;
-    for (int h : th)
-      if (h >= 0 && (lowest < 0 || h < lowest)) lowest = h;
+  layOutHinges();
+}
+
+void FabricBending::layOutHinges() {
+  // K = Σ_T (signed B_T)ᵀ W_T (signed B_T): each triangle adds to the rows of its hinges the entries of its
+  // other hinges; a hinge's row has itself and at most the two other edges of each of its two triangles.
+  const std::size_t H = theta0_.size();
+  std::vector<std::vector<std::pair<int, double>>> rows(H);
+  for (const Triangle& T : tris_) {
+    if (T.weight == 0) continue;
+    const double W[3] = {T.weight, 2 * T.weight, T.weight};
     for (int e = 0; e < 3; ++e) {
-      const int h = th[std::size_t(e)];
-      if (h < 0) continue;
-      const std::size_t side = 2 * std::size_t(h) + (hingeTris_[2 * std::size_t(h)] < 0 ? 0 : 1);
-      hingeTris_[side] = int(3 * t) + e;
-      energyAt_[side] = h == lowest ? 1 : 0;
+      const int he = T.hinge[std::size_t(e)];
+      if (he < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int hk = T.hinge[std::size_t(k)];
+        if (hk < 0) continue;
+        double K = 0;
+        for (int r = 0; r < 3; ++r) K += T.B[std::size_t(3 * r + e)] * W[r] * T.B[std::size_t(3 * r + k)];
+        K *= T.sign[std::size_t(e)] * T.sign[std::size_t(k)];
+        auto& row = rows[std::size_t(he)];
+        const auto it = std::find_if(row.begin(), row.end(), [&](const auto& p) { return p.first == hk; });
+        if (it == row.end())
+          row.emplace_back(hk, K);
+        else
+          it->second += K;
+      }
+    }
+  }
+  BendingHinges& B = batched_;
+  constexpr int kN = BendingHinges::kNeighbours;
+  B.count = int(H);
+  B.padded = (B.count + kLaneWidth - 1) / kLaneWidth * kLaneWidth;
+  const std::size_t P = std::size_t(B.padded);
+  B.nodes.assign(4 * P, 0);
+  B.theta0.assign(P, 0.0);
+  B.stiffness.assign(P, 0.0);
+  B.selfCoef.assign(P, 0.0);
+  B.coef.assign(kN * P, 0.0);
+  B.neighbour.assign(kN * P, 0);
+  for (std::size_t h = 0; h < P; ++h) {
+    // Padded lanes: the last hinge's nodes (valid addresses), no stiffness, no row: no force, no step.
+    const std::size_t src = std::min(h, H - 1);
+    for (std::size_t k = 0; k < 4; ++k) B.nodes[k * P + h] = H > 0 ? hingeNodes_[4 * src + k] : 0;
+    B.neighbour[h] = int(h);
+    for (std::size_t j = 0; j < std::size_t(kN); ++j) B.neighbour[j * P + h] = int(src);
+    if (h >= H) continue;
+    B.theta0[h] = theta0_[h];
+    B.stiffness[h] = hingeStiffness_[h];
+    std::size_t j = 0;
+    for (const auto& [other, K] : rows[h]) {
+      if (std::size_t(other) == h) {
+        B.selfCoef[h] = K;
+        continue;
+      }
+      if (j == std::size_t(kN)) throw std::logic_error(name() + ": a hinge with more than 4 neighbours");
+      B.neighbour[j * P + h] = other;
+      B.coef[j * P + h] = K;
+      ++j;
     }
   }
 }
-
-namespace {
-constexpr std::size_t kScratchPerHinge = 14;  // Δθ, moment, 12 gradient components
-}  // namespace
 
 Connectivity FabricBending::connectivity() const {
   Connectivity c;
   c.items = hinges();
   c.nodesPerItem = 4;
   c.nodes = hingeNodes_.data();
+  c.batch = kLaneWidth;
   c.prepass = true;
-  c.scratch = kScratchPerHinge * std::size_t(hinges());
+  c.scratch = std::size_t(batched_.padded);
   return c;
 }
 
-FabricBending::Scratch FabricBending::scratchIn(double* memory) const {
+double* FabricBending::scratchIn(double* memory) const {
   if (memory == nullptr)
     throw std::logic_error(name() + ": no working memory (ForceContext::scratch of " +
-                           std::to_string(kScratchPerHinge * std::size_t(hinges())) + " doubles)");
-  const std::size_t h = std::size_t(hinges());
-  return {memory, memory + h, memory + 2 * h};
+                           std::to_string(batched_.padded) + " doubles)");
+  return memory;
 }
 
-void FabricBending::hingeAngles(const double* x, bool gradients, int begin, int end, const Scratch& w) const {
-  for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
+std::vector<double> FabricBending::hingeAngles(const double* x) const {
+  std::vector<double> dtheta(static_cast<std::size_t>(hinges()));
+  for (std::size_t h = 0; h < dtheta.size(); ++h) {
     const int* n = &hingeNodes_[4 * h];
-    const double theta = hingeAngle(&x[3 * n[0]], &x[3 * n[1]], &x[3 * n[2]], &x[3 * n[3]],
-                                    gradients ? &w.g[12 * h] : nullptr);
-    w.dtheta[h] = wrapAngle(theta - theta0_[h]);
+    dtheta[h] =
+        wrapAngle(hingeAngle(&x[3 * n[0]], &x[3 * n[1]], &x[3 * n[2]], &x[3 * n[3]], nullptr) - theta0_[h]);
   }
+  return dtheta;
 }
 
 std::array<double, 3> FabricBending::curvature(int t, const double* x) const {
-  std::vector<double> dtheta(static_cast<std::size_t>(hinges()));
-  hingeAngles(x, false, 0, hinges(), {dtheta.data(), nullptr, nullptr});
+  const std::vector<double> dtheta = hingeAngles(x);
   const Triangle& T = tris_[std::size_t(t)];
   std::array<double, 3> S{0, 0, 0};
   for (int e = 0; e < 3; ++e) {
@@ -293,93 +337,26 @@ std::array<double, 3> FabricBending::curvature(int t, const double* x) const {
   return S;
 }
 
-void FabricBending::triangleMoments(int t, const double* dtheta, double* dEdTheta, double* energy) const {
-  const Triangle& T = tris_[std::size_t(t)];
-  double th[3] = {0, 0, 0};
-  for (int k = 0; k < 3; ++k)
-    if (T.hinge[std::size_t(k)] >= 0)
-      th[k] = T.sign[std::size_t(k)] * dtheta[std::size_t(T.hinge[std::size_t(k)])];
-  double S[3];
-  for (int r = 0; r < 3; ++r)
-    S[r] = T.B[std::size_t(3 * r)] * th[0] + T.B[std::size_t(3 * r + 1)] * th[1] +
-           T.B[std::size_t(3 * r + 2)] * th[2];
-  // E_T = ½ w (s11² + 2 s12² + s22²); ∂E/∂S, then ∂E/∂θ = Bᵀ ∂E/∂S, in each hinge's own sign.
-  if (energy != nullptr) *energy += 0.5 * T.weight * (S[0] * S[0] + 2 * S[1] * S[1] + S[2] * S[2]);
-  const double dS[3] = {T.weight * S[0], 2 * T.weight * S[1], T.weight * S[2]};
-  for (int e = 0; e < 3; ++e)
-    dEdTheta[e] = T.sign[std::size_t(e)] * (T.B[std::size_t(e)] * dS[0] + T.B[std::size_t(3 + e)] * dS[1] +
-                                            T.B[std::size_t(6 + e)] * dS[2]);
-}
-
 void FabricBending::addForces(ForceContext& ctx) const {
-  // Serially each triangle's curvature once, its moments scattered to its hinges. addRange (threads)
-  // gathers them per hinge instead, so that a hinge range writes only its own moments, at the price of
-  // each curvature three times (10–15 % more work, docs/PERFORMANCE.md).
   if (hinges() == 0) return;
-  const Scratch w = scratchIn(ctx.scratch);
-  hingeAngles(ctx.x, true, 0, hinges(), w);
-  std::fill(w.moment, w.moment + hinges(), 0.0);
-  double energy = 0;
-  for (std::size_t t = 0; t < tris_.size(); ++t) {
-    if (tris_[t].weight == 0) continue;
-    double m[3];
-    triangleMoments(int(t), w.dtheta, m, ctx.wantEnergy ? &energy : nullptr);
-    for (int e = 0; e < 3; ++e)
-      if (tris_[t].hinge[std::size_t(e)] >= 0) w.moment[std::size_t(tris_[t].hinge[std::size_t(e)])] += m[e];
-  }
-  if (ctx.wantEnergy) ctx.strainEnergy += energy;
-  hingeForces(ctx, 0, hinges(), w);
+  double* dtheta = scratchIn(ctx.scratch);
+  bendingAngles(batched_, ctx.x, dtheta, 0, hinges());
+  bendingForces(batched_, mass_ != nullptr ? mass_->data() : nullptr, dtheta, ctx, 0, hinges());
 }
 
 void FabricBending::prepareRange(const ForceContext& ctx, int begin, int end) const {
   if (begin >= end) return;
-  hingeAngles(ctx.x, true, begin, end, scratchIn(ctx.scratch));
+  bendingAngles(batched_, ctx.x, scratchIn(ctx.scratch), begin, end);
 }
 
 void FabricBending::addRange(ForceContext& ctx, int begin, int end) const {
   if (begin >= end) return;
-  const Scratch w = scratchIn(ctx.scratch);
-  double energy = 0;
-  for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
-    double moment = 0;
-    for (std::size_t side = 2 * h; side < 2 * h + 2; ++side) {
-      const int at = hingeTris_[side];
-      if (at < 0) continue;
-      double m[3];
-      // A triangle's energy once: at its lowest-numbered hinge (energyAt_).
-      triangleMoments(at / 3, w.dtheta, m, ctx.wantEnergy && energyAt_[side] ? &energy : nullptr);
-      moment += m[at % 3];
-    }
-    w.moment[h] = moment;
-  }
-  if (ctx.wantEnergy) ctx.strainEnergy += energy;
-  hingeForces(ctx, begin, end, w);
-}
-
-void FabricBending::hingeForces(ForceContext& ctx, int begin, int end, const Scratch& w) const {
-  double* f = ctx.fint;
-  double w2max = 0;
-  for (std::size_t h = std::size_t(begin); h < std::size_t(end); ++h) {
-    const int* n = &hingeNodes_[4 * h];
-    const double* g = &w.g[12 * h];
-    const double m = w.moment[h];
-    for (int v = 0; v < 4; ++v)
-      for (int c = 0; c < 3; ++c) f[3 * n[v] + c] += m * g[3 * v + c];
-    if (mass_ != nullptr) {
-      double gn[4], sum = 0;
-      for (int v = 0; v < 4; ++v) sum += gn[v] = std::sqrt(dot(&g[3 * v], &g[3 * v]));
-      for (int v = 0; v < 4; ++v) {
-        const double mv = (*mass_)[std::size_t(n[v])];
-        if (mv > 0) w2max = std::max(w2max, hingeStiffness_[h] * gn[v] * sum / mv);
-      }
-    }
-  }
-  if (w2max > 0) ctx.minStableDt = std::min(ctx.minStableDt, 2.0 / std::sqrt(w2max));
+  bendingForces(batched_, mass_ != nullptr ? mass_->data() : nullptr, scratchIn(ctx.scratch), ctx, begin,
+                end);
 }
 
 double FabricBending::energy(const double* x) const {
-  std::vector<double> dtheta(static_cast<std::size_t>(hinges()));
-  hingeAngles(x, false, 0, hinges(), {dtheta.data(), nullptr, nullptr});
+  const std::vector<double> dtheta = hingeAngles(x);
   double E = 0;
   for (const Triangle& T : tris_) {
     if (T.weight == 0) continue;

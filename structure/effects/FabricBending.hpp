@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "structure/effects/BendingHinges.hpp"
 #include "structure/effects/Effect.hpp"
 
 namespace fsi::structure {
@@ -53,11 +54,10 @@ class FabricBending final : public Effect {
                 const std::vector<double>* mass, double rigidity);
   std::string name() const override { return "bending:" + label_; }
   void addForces(ForceContext& ctx) const override;
-  /// The hinges, 4 nodes each, with a first pass (every hinge's angle and its gradient, prepareRange)
-  /// before each hinge's moment from the curvatures of its two triangles and its forces on its four nodes
-  /// (addRange). A triangle's curvature is so computed once for each of its hinges (three times, where
-  /// addForces computes it once), and its energy counted at its lowest-numbered hinge. Working memory
-  /// (ForceContext::scratch): 14 doubles per hinge, its Δθ, moment and gradient.
+  /// The hinges, 4 nodes each, in batches of the lane width (BendingHinges.hpp): a first pass (every
+  /// hinge's angle: prepareRange) before each hinge's moment, from its row of the angles' stiffness, and its
+  /// forces on its four nodes (addRange). addForces runs both over all hinges. Working memory
+  /// (ForceContext::scratch): one double per hinge (padded to whole batches), its Δθ.
   Connectivity connectivity() const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
   void prepareRange(const ForceContext& ctx, int begin, int end) const override;
@@ -78,26 +78,17 @@ class FabricBending final : public Effect {
     std::array<double, 9> B{};             ///< S = B Δθ, row-major (s11, s12, s22) × edges
     double weight = 0;                     ///< D·A_T
   };
-  /// One evaluation's working memory, per hinge, laid out in ForceContext::scratch (or a local buffer).
-  struct Scratch {
-    double* dtheta;  ///< Δθ
-    double* moment;  ///< ∂E/∂θ
-    double* g;       ///< ∂θ/∂x, 12 per hinge
-  };
-  Scratch scratchIn(double* memory) const;
-  /// Δθ of hinges [begin, end) at x into w.dtheta (and their gradients into w.g, if asked).
-  void hingeAngles(const double* x, bool gradients, int begin, int end, const Scratch& w) const;
-  /// ∂E/∂θ of triangle t's three edges' hinges from its curvature (and E_t added to *energy if given).
-  void triangleMoments(int t, const double* dtheta, double* dEdTheta, double* energy) const;
-  /// The forces of hinges [begin, end) from their moments and gradients, and their step bound.
-  void hingeForces(ForceContext& ctx, int begin, int end, const Scratch& w) const;
+  /// Δθ of every hinge at x (scalar, std::atan2: the reference for energy and curvature).
+  std::vector<double> hingeAngles(const double* x) const;
+  double* scratchIn(double* memory) const;
+  /// The per-hinge constants of the batched evaluation (from tris_).
+  void layOutHinges();
   std::string label_;
   std::vector<int> hingeNodes_;  ///< 4 per hinge: the two opposite vertices, then the edge's two
   std::vector<double> theta0_;
   std::vector<double> hingeStiffness_;  ///< Σ over its triangles of D·A_T·Σ_k B_k,e²: for the stable step
   std::vector<Triangle> tris_;
-  std::vector<int> hingeTris_;  ///< 2 per hinge: 3 × triangle + the hinge's edge in it, −1 if none
-  std::vector<unsigned char> energyAt_;  ///< 2 per hinge: the triangle's energy is counted at this hinge
+  BendingHinges batched_;
   const std::vector<double>* mass_ = nullptr;
   int seams_ = 0;
 };

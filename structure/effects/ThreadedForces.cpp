@@ -135,9 +135,12 @@ void ThreadedForces::evaluateShares(int t, int nt, const ForceContext& base) {
     for (int s = t; s < shares; s += nt)
       for (const Part& p : split_) {
         if (!p.items.prepass) continue;
-        const long n = p.items.items;
+        // Ranges on whole batches too (a batched first pass writes its batches whole); the last takes the
+        // rest.
+        const long n = p.items.items, a = std::max(1, p.items.batch);
+        const auto cut = [&](long b) { return b >= shares ? n : n * b / shares / a * a; };
         ctx.scratch = p.scratch;
-        p.effect->prepareRange(ctx, int(n * s / shares), int(n * (s + 1) / shares));
+        p.effect->prepareRange(ctx, int(cut(s)), int(cut(s + 1)));
       }
 #ifdef FSI_HAVE_OPENMP
 #pragma omp barrier

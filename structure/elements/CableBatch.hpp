@@ -13,7 +13,7 @@
 
 #include "structure/effects/Effect.hpp"
 #include "structure/elements/CableForces.hpp"
-#include "structure/elements/Lanes.hpp"
+#include "structure/model/Lanes.hpp"
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure::cable {

@@ -14,7 +14,7 @@
 
 #include "structure/effects/Effect.hpp"
 #include "structure/elements/ElementKind.hpp"
-#include "structure/elements/Lanes.hpp"
+#include "structure/model/Lanes.hpp"
 #include "structure/model/Model.hpp"
 
 namespace fsi::structure::membrane {

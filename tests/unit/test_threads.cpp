@@ -323,7 +323,7 @@ TEST(Threads, BendingEqualsSerial) {
   ASSERT_TRUE(bend->connectivity().prepass);
   const Evaluation serial = evaluateAll(m, {bend}, 1), serialAll = evaluateAll(m, effects, 1);
   ASSERT_GT(serial.energy, 0.0);
-  // Each triangle's energy counted once (at its lowest hinge): the sum over triangles.
+  // ½ Δθᵀ K Δθ summed over the hinges: the energy summed over the triangles.
   EXPECT_NEAR(serial.energy, dynamic_cast<const FabricBending&>(*bend).energy(m.nodes.x.data()),
               1e-12 * serial.energy);
   for (int threads : {2, 3, 5}) {

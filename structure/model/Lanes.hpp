@@ -75,6 +75,46 @@ inline Vd sqrt(Vd a) {
 #endif
 }
 
+/// kWidth doubles of v to p (no alignment needed).
+inline void store(double* p, Vd v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+/// atan2(y, x) of every lane, branch-free: the ratio of the smaller to the larger magnitude reduced to
+/// |r| ≤ tan(π/8) (through atan(t) = π/4 + atan((t − 1)/(t + 1)) above it), atan(r) = r + r³ P(r²) with
+/// P of degree 10 (a Chebyshev interpolant of (atan(r)/r − 1)/r², fitted in 50-digit arithmetic; truncation
+/// below 5e-18 relative), then the octant and quadrant by blends. Within a few units in the last place of
+/// std::atan2 (tests/unit/test_lanes_atan2.cpp); signed zeros as std::atan2 takes them.
+inline Vd atan2(Vd y, Vd x) {
+  constexpr double kPi = 3.14159265358979323846, kTanPi8 = 0.41421356237309504880;
+  const Vd ax = abs(x), ay = abs(y);
+  const Vm swap = ay > ax;
+  const Vd num = select(swap, ax, ay), den = select(swap, ay, ax);
+  const Vm big = num > kTanPi8 * den;
+  const Vd safeDen = select(den > 0.0, den, splat(1.0));
+  const Vd r = select(big, num - den, num) / select(big, num + den, safeDen);
+  const Vd u = r * r;
+  Vd p = splat(-0.01917688711906226);
+  p = p * u + 0.03923165829558719;
+  p = p * u - 0.0508544973794026;
+  p = p * u + 0.0585814891280221;
+  p = p * u - 0.06664511447381948;
+  p = p * u + 0.07692183190826087;
+  p = p * u - 0.09090904578123903;
+  p = p * u + 0.11111111015256361;
+  p = p * u - 0.14285714284666542;
+  p = p * u + 0.1999999999999552;
+  p = p * u - 0.3333333333333333;
+  Vd a = r + r * u * p;
+  a = select(big, a + 0.25 * kPi, a);
+  a = select(swap, 0.5 * kPi - a, a);
+  Vm signX, signY;
+  std::memcpy(&signX, &x, sizeof x);
+  std::memcpy(&signY, &y, sizeof y);
+  a = select(signX < 0, kPi - a, a);
+  return select(signY < 0, -a, a);
+}
+
 /// Gathers the xyz triples at p[0..kWidth) into lane vectors out[0..2] = x, y, z of every lane. The AVX
 /// version builds the vectors in registers (through memory the 8-byte writes and the 32-byte read would
 /// stall the store forwarding).

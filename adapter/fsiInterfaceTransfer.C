@@ -73,7 +73,7 @@ void fsiInterfaceTransfer::setUp(const fsi::coupling::StructureParticipant& stru
                                          : fsi::coupling::mappingTolerance(structureReference, ip->referenceMesh());
     maps_.emplace_back(new fsi::coupling::L2Projection(structureReference, ip->referenceMesh(), opt));
     const auto& r = maps_.back()->report();
-    Info << "[fsi] patch " << ip->name() << ": " << fsi::coupling::describe(opt) << " ("
+    Info << "[fsi] patch " << ip->name() << ": " << fsi::coupling::describe(opt).c_str() << " ("
          << (config_.mapTolerance ? "mapTolerance given" : "tolerance from the chord gaps")
          << "; the same defaults as fsi map-check)" << endl;
     Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes

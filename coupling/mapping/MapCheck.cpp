@@ -378,6 +378,32 @@ nlohmann::json MapCheckResult::toJson() const {
           {"all_mapped", allMapped()}};
 }
 
+namespace {
+// The summary's end: the warnings, then whether every point mapped (and the first that did not).
+std::string closingLines(const MapCheckResult& result) {
+  std::string s;
+  for (const std::string& a : result.advice) s += "warning: " + a + "\n";
+  if (result.allMapped()) {
+    s += "all points mapped\n";
+    return s;
+  }
+  for (const DirectionCheck& d : result.directions) {
+    const ProjectionReport& r = d.report;
+    if (r.allMapped()) continue;
+    s += fmt::format(
+        "{} -> {}: {} target quadrature points were not mapped (farther than {:.4g} from the source); "
+        "{} target nodes affected",
+        r.source, r.target, r.unmappedQuadraturePoints, result.tolerance, r.unmappedTargetNodes);
+    if (!r.firstUnmappedNodes.empty()) s += fmt::format(", first: {}", fmt::join(r.firstUnmappedNodes, " "));
+    s += "\n";
+    for (const UnmappedPoint& p : r.firstUnmappedPoints)
+      s += fmt::format("    point ({:.6g}, {:.6g}, {:.6g}) at distance {:.4g}\n", p.x[0], p.x[1], p.x[2],
+                       p.distance);
+  }
+  return s;
+}
+}  // namespace
+
 std::string MapCheckResult::settingsLines() const {
   const std::vector<std::string> differ = differencesFromRunDefaults(projection);
   return fmt::format("settings: {}\n          {}\n\n", describe(projection),
@@ -487,25 +513,7 @@ std::string MapCheckResult::summary() const {
       "transpose, vector field [ms]",
       [](const DirectionCheck& d) { return 1e3 * d.applyTransposeSecondsVector; }, "{:.4f}");
   s += "\n";
-  for (const std::string& a : advice) s += "warning: " + a + "\n";
-  if (allMapped()) {
-    s += "all points mapped\n";
-    return s;
-  }
-  for (const DirectionCheck& d : directions) {
-    const ProjectionReport& r = d.report;
-    if (r.allMapped()) continue;
-    s += fmt::format(
-        "{} -> {}: {} target quadrature points were not mapped (farther than {:.4g} from the source); "
-        "{} target nodes affected",
-        r.source, r.target, r.unmappedQuadraturePoints, tolerance, r.unmappedTargetNodes);
-    if (!r.firstUnmappedNodes.empty()) s += fmt::format(", first: {}", fmt::join(r.firstUnmappedNodes, " "));
-    s += "\n";
-    for (const UnmappedPoint& p : r.firstUnmappedPoints)
-      s += fmt::format("    point ({:.6g}, {:.6g}, {:.6g}) at distance {:.4g}\n", p.x[0], p.x[1], p.x[2],
-                       p.distance);
-  }
-  return s;
+  return s + closingLines(*this);
 }
 
 }  // namespace fsi::coupling

@@ -119,8 +119,9 @@ double chordGap(const InterfaceMesh& m) {
 }
 
 double mappingTolerance(const InterfaceMesh& structure, const InterfaceMesh& fluid) {
-  return std::max(kToleranceEdgeShare * structure.meanEdgeLength(),
-                  2.0 * (chordGap(structure) + chordGap(fluid)));
+  const double floor = kToleranceEdgeShare * structure.meanEdgeLength();
+  const double gaps = 2.0 * (chordGap(structure) + chordGap(fluid));
+  return std::isfinite(gaps) ? std::max(floor, gaps) : floor;  // degenerate faces: the floor alone
 }
 
 }  // namespace fsi::coupling

@@ -69,8 +69,9 @@ void fsiInterfaceTransfer::setUp(const fsi::coupling::StructureParticipant& stru
   projectionOptions_ = opt;
   for (const auto& ip : patches_) {
     // The tolerance from the two surfaces' chord gaps (mappingTolerance, as `fsi map-check`) unless given.
-    opt.tolerance = config_.mapTolerance ? *config_.mapTolerance
-                                         : fsi::coupling::mappingTolerance(structureReference, ip->referenceMesh());
+    opt.tolerance = config_.mapTolerance
+                        ? *config_.mapTolerance
+                        : fsi::coupling::mappingTolerance(structureReference, ip->referenceMesh());
     maps_.emplace_back(new fsi::coupling::L2Projection(structureReference, ip->referenceMesh(), opt));
     const auto& r = maps_.back()->report();
     Info << "[fsi] patch " << ip->name() << ": " << fsi::coupling::describe(opt).c_str() << " ("

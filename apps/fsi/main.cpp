@@ -562,22 +562,27 @@ int main(int argc, char** argv) {
   // Every default below is the coupled run's (coupledRunProjection()): the check measures what the run gets.
   mapCheck->add_option("--variant", mapArgs.variant,
                        "L2 projection: consistent, lumped, dual or auto (consistent up to 5000 target nodes, "
-                       "dual above); default " + mapArgs.variant);
+                       "dual above); default " +
+                           mapArgs.variant);
   mapCheck->add_option("--evaluation", mapArgs.evaluation,
                        "consistent transfer: pointwise (nearest projection) or l2 (the L2 projection); "
-                       "default " + mapArgs.evaluation);
+                       "default " +
+                           mapArgs.evaluation);
   mapCheck->add_option("--quadrature-level", mapArgs.level,
                        "split each target triangle into level^2 for quadrature: auto (from the meshes' "
-                       "edge-length ratio) or 1..64; default " + mapArgs.level);
+                       "edge-length ratio) or 1..64; default " +
+                           mapArgs.level);
   mapCheck->add_option("--gap-correction", mapArgs.gapCorrection,
                        "yes|no: carry fields across the gap of curved meshes (docs/PROJECTION.md); default " +
                            mapArgs.gapCorrection);
   mapCheck->add_option("--keep-side", mapArgs.keepSide,
                        "yes|no: map points of a body wetted from one side onto the source facing their way "
-                       "(thin edges; docs/PROJECTION.md); default " + mapArgs.keepSide);
+                       "(thin edges; docs/PROJECTION.md); default " +
+                           mapArgs.keepSide);
   mapCheck->add_option("--defect-correction", mapArgs.defect,
                        "auto (on when the target is 1.5x coarser than the source), on or off "
-                       "(docs/PROJECTION.md); default " + mapArgs.defect);
+                       "(docs/PROJECTION.md); default " +
+                           mapArgs.defect);
   mapCheck->add_option("--set", mapSets,
                        "override a value of the scene side(s): key.path=value (repeatable)");
 

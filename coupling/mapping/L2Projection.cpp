@@ -126,7 +126,8 @@ void L2Projection::setUpPointwise(const SurfaceSearch& search, const InterfaceMe
     if (pointwise_->nodeMapped()[std::size_t(i)] || !nodeMapped_[std::size_t(i)]) continue;
     nodeMapped_[std::size_t(i)] = 0;
     ++report_.unmappedTargetNodes;
-    if (report_.firstUnmappedNodes.size() < ProjectionReport::kListed) report_.firstUnmappedNodes.push_back(i);
+    if (report_.firstUnmappedNodes.size() < ProjectionReport::kListed)
+      report_.firstUnmappedNodes.push_back(i);
   }
 }
 const Eigen::VectorXd& L2Projection::lumpedMass() const {

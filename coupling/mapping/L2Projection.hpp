@@ -165,8 +165,8 @@ struct ProjectionReport {
   int unmappedTargetNodes = 0;
   std::vector<int> firstUnmappedNodes;  ///< up to kListed
   double maxGap = 0.0;                  ///< largest distance of a mapped quadrature point to the source
-  bool pointwise = false;    ///< apply() evaluates at the target nodes (ProjectionOptions::evaluation)
-  double maxNodeGap = 0.0;   ///< pointwise: largest distance of a mapped target node to the source
+  bool pointwise = false;   ///< apply() evaluates at the target nodes (ProjectionOptions::evaluation)
+  double maxNodeGap = 0.0;  ///< pointwise: largest distance of a mapped target node to the source
   double searchSeconds = 0.0, assemblySeconds = 0.0, factorSeconds = 0.0, setupSeconds = 0.0;
   static constexpr std::size_t kListed = 10;
   bool allMapped() const { return unmappedQuadraturePoints == 0 && unmappedTargetNodes == 0; }
@@ -189,8 +189,9 @@ class L2Projection {
   MassMatrix mass() const { return mass_; }  ///< never Auto: the variant it chose
   const ProjectionReport& report() const { return report_; }
 
-  /// u_t = H u_s (with Evaluation::Pointwise: E u_s, the source field at each target node's closest point) for `components` = 1 or 3 (vectors xyz-interleaved). us has sourceSize()·components values,
-  /// ut targetSize()·components. No allocation; uses internal scratch, so one object must not apply from two
+  /// u_t = H u_s (with Evaluation::Pointwise: E u_s, the source field at each target node's closest point)
+  /// for `components` = 1 or 3 (vectors xyz-interleaved). us has sourceSize()·components values, ut
+  /// targetSize()·components. No allocation; uses internal scratch, so one object must not apply from two
   /// threads at once.
   void apply(const double* us, double* ut, int components = 1) const;
   /// f_s = Hᵀ f_t: the conservative transfer (forces target → source), same conventions as apply().

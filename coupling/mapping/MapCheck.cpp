@@ -46,7 +46,8 @@ struct TestFields {
   double wave(const Vec3& x) const {
     const Vec3 y = local(x);
     double s = 0.0;
-    for (std::size_t m = 0; m < k.size(); ++m) s += std::sin(k[m][0] * y[0] + k[m][1] * y[1] + k[m][2] * y[2] + phase[m]);
+    for (std::size_t m = 0; m < k.size(); ++m)
+      s += std::sin(k[m][0] * y[0] + k[m][1] * y[1] + k[m][2] * y[2] + phase[m]);
     return s / double(k.size());
   }
 };
@@ -285,7 +286,6 @@ void checkFinite(const MapCheckResult& r) {
   }
 }
 
-
 // Warnings, each with the setting that would help (issue 39): surfaces far apart against the finer mesh's
 // edges (the chord gap), the consistent transfer behind nearest-point interpolation on a field of the
 // interface's own length scales, source nodes the conservative transfer leaves without force.
@@ -407,8 +407,9 @@ std::string closingLines(const MapCheckResult& result) {
 std::string MapCheckResult::settingsLines() const {
   const std::vector<std::string> differ = differencesFromRunDefaults(projection);
   return fmt::format("settings: {}\n          {}\n\n", describe(projection),
-                     differ.empty() ? std::string("(the coupled run's defaults, coupledRunProjection())")
-                                    : fmt::format("(not the coupled run's defaults: {})", fmt::join(differ, ", ")));
+                     differ.empty()
+                         ? std::string("(the coupled run's defaults, coupledRunProjection())")
+                         : fmt::format("(not the coupled run's defaults: {})", fmt::join(differ, ", ")));
 }
 
 std::string MapCheckResult::summary() const {
@@ -481,7 +482,9 @@ std::string MapCheckResult::summary() const {
       [](const DirectionCheck& d) { return fmt::format("{:.2e}/{:.2e}", d.wave.max, d.wave.rms); }, "{}");
   both(
       "  nearest-point interpolation: wave, max / rms",
-      [](const DirectionCheck& d) { return fmt::format("{:.2e}/{:.2e}", d.waveNearest.max, d.waveNearest.rms); },
+      [](const DirectionCheck& d) {
+        return fmt::format("{:.2e}/{:.2e}", d.waveNearest.max, d.waveNearest.rms);
+      },
       "{}");
   both(
       "uniform pressure by H^T: rms deviation", [](const DirectionCheck& d) { return d.pressureRms; },

@@ -54,8 +54,8 @@ struct DirectionCheck {
 struct MapCheckResult {
   std::string meshA, meshB;
   double tolerance = 0.0;
-  ProjectionOptions projection;              ///< as asked (tolerance: the one used)
-  MassMatrix mass = MassMatrix::Auto;        ///< as asked
+  ProjectionOptions projection;        ///< as asked (tolerance: the one used)
+  MassMatrix mass = MassMatrix::Auto;  ///< as asked
   /// Warnings with the settings to use instead (chord gap, behind nearest point, zero-force nodes); empty
   /// when there is nothing to advise.
   std::vector<std::string> advice;

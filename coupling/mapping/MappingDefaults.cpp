@@ -21,8 +21,12 @@ ProjectionOptions coupledRunProjection() {
 }
 
 namespace {
-std::string level(int l) { return l == kAutoQuadrature ? "auto" : std::to_string(l); }
-const char* yesNo(bool b) { return b ? "yes" : "no"; }
+std::string level(int l) {
+  return l == kAutoQuadrature ? "auto" : std::to_string(l);
+}
+const char* yesNo(bool b) {
+  return b ? "yes" : "no";
+}
 }  // namespace
 
 std::string describe(const ProjectionOptions& o) {
@@ -41,7 +45,8 @@ std::vector<std::string> differencesFromRunDefaults(const ProjectionOptions& o) 
   if (o.evaluation != d.evaluation) out.push_back(fmt::format("evaluation {}", toString(o.evaluation)));
   if (o.quadratureLevel != d.quadratureLevel)
     out.push_back(fmt::format("quadratureLevel {}", level(o.quadratureLevel)));
-  if (o.gapCorrection != d.gapCorrection) out.push_back(fmt::format("gapCorrection {}", yesNo(o.gapCorrection)));
+  if (o.gapCorrection != d.gapCorrection)
+    out.push_back(fmt::format("gapCorrection {}", yesNo(o.gapCorrection)));
   if (o.defectCorrection != d.defectCorrection)
     out.push_back(fmt::format("defectCorrection {}", toString(o.defectCorrection)));
   if (o.keepSide != d.keepSide) out.push_back(fmt::format("keepSide {}", yesNo(o.keepSide)));
@@ -68,7 +73,9 @@ Vec3 faceNormal(const InterfaceMesh& m, int f) {  // unit normal of the fan abou
   return l > 0.0 ? Vec3{n[0] / l, n[1] / l, n[2] / l} : n;
 }
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 // Unit vertex normals: the faces' normals around each vertex summed, each turned to agree with the first
 // (a membrane mesh need not orient its faces alike). Zero where they cancel or at a crease sharper than
@@ -91,7 +98,8 @@ std::vector<Vec3> vertexNormals(const InterfaceMesh& m) {
   }
   for (std::size_t v = 0; v < sum.size(); ++v) {
     const double l = std::sqrt(dot(sum[v], sum[v]));
-    sum[v] = crease[v] || !(l > 0.0) ? Vec3{0.0, 0.0, 0.0} : Vec3{sum[v][0] / l, sum[v][1] / l, sum[v][2] / l};
+    sum[v] =
+        crease[v] || !(l > 0.0) ? Vec3{0.0, 0.0, 0.0} : Vec3{sum[v][0] / l, sum[v][1] / l, sum[v][2] / l};
   }
   return sum;
 }

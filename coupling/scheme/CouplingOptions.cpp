@@ -449,12 +449,14 @@ OptionSchema couplingOptionSchema() {
       wordSpec("projection", OptionType::Choice, toString(run.mass), massMatrixNames(),
                "L2 projection between the non-matching interface meshes (auto: consistent up to "
                "5000 fluid points, dual above); its transpose carries the loads"));
-  coupled.push_back(wordSpec("evaluation", OptionType::Choice, toString(run.evaluation), {"pointwise", "l2"},
-                             "displacement to the fluid: pointwise (each fluid point at its closest structure "
-                             "point: nearest projection) or l2 (the L2 projection)"));
+  coupled.push_back(
+      wordSpec("evaluation", OptionType::Choice, toString(run.evaluation), {"pointwise", "l2"},
+               "displacement to the fluid: pointwise (each fluid point at its closest structure "
+               "point: nearest projection) or l2 (the L2 projection)"));
   OptionSpec quadrature = integerOption(
-      "quadratureLevel", run.quadratureLevel == kAutoQuadrature ? "auto" : std::to_string(run.quadratureLevel),
-      Bound{1, true}, Bound{double(kMaxQuadratureLevel), true},
+      "quadratureLevel",
+      run.quadratureLevel == kAutoQuadrature ? "auto" : std::to_string(run.quadratureLevel), Bound{1, true},
+      Bound{double(kMaxQuadratureLevel), true},
       "sub-triangles per fluid face edge for the projection's quadrature; auto: from the meshes' edge ratio");
   quadrature.choices = {"auto"};
   coupled.push_back(quadrature);

@@ -2,9 +2,9 @@
 // a plain nearest projection (NP, written here by brute force: every target vertex onto its closest source
 // triangle, linear interpolation) on curved interfaces no part of the projection was tuned on — a sphere (an
 // icosphere against a rotated latitude–longitude sphere), a torus (R = 1, r = 0.35) and an arced, cambered
-// wing skin (open) — two mesh pairs each with jittered vertices, fine → coarse and coarse → fine, for a linear
-// field, sin 3x cos 2y + z² and random-phase fields of the interface's own length scales. Errors at the
-// target vertices against the exact field (max and RMS); the default must not fall behind NP. The
+// wing skin (open) — two mesh pairs each with jittered vertices, fine → coarse and coarse → fine, for a
+// linear field, sin 3x cos 2y + z² and random-phase fields of the interface's own length scales. Errors at
+// the target vertices against the exact field (max and RMS); the default must not fall behind NP. The
 // conservative transfer Hᵀ must keep the total force exactly and load every source node smoothly.
 // `--gtest_also_run_disabled_tests --gtest_filter='*DISABLED_Table*'` prints the table of
 // docs/PROJECTION.md ("Against nearest projection").
@@ -15,6 +15,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <string>
@@ -31,8 +33,12 @@ using Vec3 = std::array<double, 3>;
 using Field = std::function<double(const Vec3&)>;
 constexpr double kPi = 3.14159265358979323846;
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 // Rotation by `angle` about the unit axis u (Rodrigues).
 Vec3 rotate(const Vec3& x, const Vec3& axis, double angle) {
@@ -47,8 +53,7 @@ Vec3 rotate(const Vec3& x, const Vec3& axis, double angle) {
 // A structured (nu × nv cells) parametric surface, every cell split into two triangles along alternating
 // diagonals; interior parameters jittered by ±`jitter` cells (seeded); periodic in u and/or v.
 InterfaceMesh parametric(const std::string& name, int nu, int nv, bool periodicU, bool periodicV,
-                         double jitter, unsigned seed,
-                         const std::function<Vec3(double, double)>& surface) {
+                         double jitter, unsigned seed, const std::function<Vec3(double, double)>& surface) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> r(-jitter, jitter);
   const int pu = periodicU ? nu : nu + 1, pv = periodicV ? nv : nv + 1;
@@ -78,8 +83,8 @@ InterfaceMesh parametric(const std::string& name, int nu, int nv, bool periodicU
 // Icosahedron subdivided `levels` times, projected onto the unit sphere.
 InterfaceMesh icosphere(int levels) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> p{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                      {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Vec3> p{{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                      {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -126,7 +131,8 @@ InterfaceMesh latLongSphere(int n) {
   for (int j = 1; j < n; ++j)
     for (int i = 0; i < 2 * n; ++i) {
       const double th = kPi * j / n, ph = kPi * (i + 0.5 * (j % 2)) / n;
-      m.points.push_back(rotate({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)}, axis, 0.61));
+      m.points.push_back(
+          rotate({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)}, axis, 0.61));
     }
   m.points.push_back(rotate({0, 0, -1}, axis, 0.61));
   const int south = int(m.points.size()) - 1;
@@ -306,13 +312,12 @@ struct Pair {
   InterfaceMesh fine, coarse;
 };
 const std::vector<Pair>& pairs() {
-  static const std::vector<Pair> p{
-      {"sphere", icosphere(4), latLongSphere(9)},
-      {"sphere", latLongSphere(30), icosphere(2)},
-      {"torus", torus(90, 30, 0.0, 11), torus(24, 8, 0.37, 12)},
-      {"torus", torus(64, 24, 0.11, 13), torus(30, 10, 0.5, 14)},
-      {"wing", wingSkin(48, 60, 15), wingSkin(12, 14, 16)},
-      {"wing", wingSkin(40, 40, 17), wingSkin(16, 18, 18)}};
+  static const std::vector<Pair> p{{"sphere", icosphere(4), latLongSphere(9)},
+                                   {"sphere", latLongSphere(30), icosphere(2)},
+                                   {"torus", torus(90, 30, 0.0, 11), torus(24, 8, 0.37, 12)},
+                                   {"torus", torus(64, 24, 0.11, 13), torus(30, 10, 0.5, 14)},
+                                   {"wing", wingSkin(48, 60, 15), wingSkin(12, 14, 16)},
+                                   {"wing", wingSkin(40, 40, 17), wingSkin(16, 18, 18)}};
   return p;
 }
 
@@ -403,8 +408,9 @@ TEST(MappingVsNearest, ConservativeTransferExactAndSmooth) {
       // onto the finer mesh at least 4x smoother than NP's transpose, which leaves nodes without force there.
       const auto [rms, zeros] = pressureTransfer(h, src, dst);
       const auto [rmsNearest, zerosNearest] = nearestPressureTransfer(src, dst);
-      std::printf("  %s -> %s: H^T of a uniform pressure %.1f %% RMS, %ld zero-force nodes; NP^T %.1f %%, %ld\n",
-                  src.name.c_str(), dst.name.c_str(), 100 * rms, zeros, 100 * rmsNearest, zerosNearest);
+      std::printf(
+          "  %s -> %s: H^T of a uniform pressure %.1f %% RMS, %ld zero-force nodes; NP^T %.1f %%, %ld\n",
+          src.name.c_str(), dst.name.c_str(), 100 * rms, zeros, 100 * rmsNearest, zerosNearest);
       EXPECT_EQ(zeros, 0);
       EXPECT_LT(rms, 0.10);
       if (fineToCoarse) {  // onto the finer mesh
@@ -446,7 +452,8 @@ TEST(MappingVsNearest, GeometricToleranceMapsCoarseFluidOnFineStructure) {
         const Vec3 &a = fluid.points[fluid.face(f)[0]], &b = fluid.points[fluid.face(f)[1]],
                    &c = fluid.points[fluid.face(f)[2]];
         const double u = i / 10.0, v = j / 10.0, w = 1 - u - v;
-        const Vec3 x{w * a[0] + u * b[0] + v * c[0], w * a[1] + u * b[1] + v * c[1], w * a[2] + u * b[2] + v * c[2]};
+        const Vec3 x{w * a[0] + u * b[0] + v * c[0], w * a[1] + u * b[1] + v * c[1],
+                     w * a[2] + u * b[2] + v * c[2]};
         sag = std::max(sag, std::abs(std::hypot(std::hypot(x[0], x[1]) - 1.0, x[2]) - 0.35));
       }
   EXPECT_GT(chordGap(fluid), 0.7 * sag);
@@ -462,9 +469,10 @@ TEST(MappingVsNearest, GeometricToleranceMapsCoarseFluidOnFineStructure) {
   before.tolerance = former;
   const L2Projection then(structure, fluid, before);
   EXPECT_GT(then.report().unmappedTargetNodes, 0);
-  std::printf("  torus %d structure nodes, %d fluid points: tolerance %.4g (former %.4g), %d points refused "
-              "by the former\n",
-              structure.numPoints(), fluid.numPoints(), o.tolerance, former, then.report().unmappedTargetNodes);
+  std::printf(
+      "  torus %d structure nodes, %d fluid points: tolerance %.4g (former %.4g), %d points refused "
+      "by the former\n",
+      structure.numPoints(), fluid.numPoints(), o.tolerance, former, then.report().unmappedTargetNodes);
   // A surface well off the structure's is still refused.
   InterfaceMesh off = fluid;
   for (Vec3& x : off.points) {
@@ -477,8 +485,9 @@ TEST(MappingVsNearest, GeometricToleranceMapsCoarseFluidOnFineStructure) {
   EXPECT_FALSE(L2Projection(structure, off, o).report().allMapped());
   // Flat meshes have no chord gap: the floor.
   EXPECT_EQ(chordGap(wingSkin(4, 4, 1)) > 0, true);
-  InterfaceMesh flat = parametric("flat", 6, 5, false, false, 0.2, 3,
-                                  [](double a, double b) { return Vec3{a, b, 0.0}; });
+  InterfaceMesh flat = parametric("flat", 6, 5, false, false, 0.2, 3, [](double a, double b) {
+    return Vec3{a, b, 0.0};
+  });
   EXPECT_EQ(chordGap(flat), 0.0);
   EXPECT_DOUBLE_EQ(mappingTolerance(flat, flat), 0.25 * flat.meanEdgeLength());
 }
@@ -521,15 +530,23 @@ TEST(MappingVsNearest, MapCheckAdvises) {
       << old.settingsLines();
 
   // Two meshes of one flat square: nothing to advise.
-  const InterfaceMesh a = parametric("a", 9, 7, false, false, 0.2, 5, [](double u, double v) { return Vec3{u, v, 0.0}; });
-  const InterfaceMesh b = parametric("b", 13, 11, false, false, 0.2, 6, [](double u, double v) { return Vec3{u, v, 0.0}; });
+  const InterfaceMesh a = parametric("a", 9, 7, false, false, 0.2, 5, [](double u, double v) {
+    return Vec3{u, v, 0.0};
+  });
+  const InterfaceMesh b = parametric("b", 13, 11, false, false, 0.2, 6, [](double u, double v) {
+    return Vec3{u, v, 0.0};
+  });
   opt.projection = coupledRunProjection();
   const MapCheckResult flat = runMapCheck(a, b, opt);
   EXPECT_TRUE(flat.advice.empty()) << flat.summary();
 }
 
-// The table of docs/PROJECTION.md: every option against NP, both directions, max and RMS ratios.
+// The table of docs/PROJECTION.md: every option against NP, both directions, max and RMS ratios; with
+// FSI_MAPPING_TABLE_JSON=FILE also every (settings, direction, pair, field) ratio as JSON rows
+// (studies/mapping/mapping_vs_nearest.py plots them).
 TEST(MappingVsNearest, DISABLED_Table) {
+  const char* jsonPath = std::getenv("FSI_MAPPING_TABLE_JSON");
+  std::string json = "[\n";
   struct Variant {
     std::string name;
     std::function<void(ProjectionOptions&)> set;
@@ -537,9 +554,16 @@ TEST(MappingVsNearest, DISABLED_Table) {
   const std::vector<Variant> variants{
       {"run default (pointwise)", [](ProjectionOptions&) {}},
       {"L2, level 1 (former adapter)",
-       [](ProjectionOptions& o) { o.evaluation = ProjectionOptions::Evaluation::L2; o.quadratureLevel = 1; }},
+       [](ProjectionOptions& o) {
+         o.evaluation = ProjectionOptions::Evaluation::L2;
+         o.quadratureLevel = 1;
+       }},
       {"L2, auto level", [](ProjectionOptions& o) { o.evaluation = ProjectionOptions::Evaluation::L2; }},
-      {"L2 + gap", [](ProjectionOptions& o) { o.evaluation = ProjectionOptions::Evaluation::L2; o.gapCorrection = true; }},
+      {"L2 + gap",
+       [](ProjectionOptions& o) {
+         o.evaluation = ProjectionOptions::Evaluation::L2;
+         o.gapCorrection = true;
+       }},
       {"L2 + gap + defect auto",
        [](ProjectionOptions& o) {
          o.evaluation = ProjectionOptions::Evaluation::L2;
@@ -571,6 +595,13 @@ TEST(MappingVsNearest, DISABLED_Table) {
           if (f.name == "linear") continue;
           const Row r = compare(h, src, dst, f.f);
           const double a = r.mapped.max / r.nearest.max, b = r.mapped.rms / r.nearest.rms;
+          char line[512];
+          std::snprintf(line, sizeof line,
+                        "{\"settings\": \"%s\", \"direction\": \"%s\", \"source\": \"%s\", \"target\": "
+                        "\"%s\", \"field\": \"%s\", \"max_ratio\": %.6g, \"rms_ratio\": %.6g},\n",
+                        v.name.c_str(), fineToCoarse ? "fine to coarse" : "coarse to fine", src.name.c_str(),
+                        dst.name.c_str(), f.name.c_str(), a, b);
+          json += line;
           worstMax = std::max(worstMax, a);
           worstRms = std::max(worstRms, b);
           sumMax += std::log(a);
@@ -582,6 +613,10 @@ TEST(MappingVsNearest, DISABLED_Table) {
                   fineToCoarse ? "fine → coarse" : "coarse → fine", std::exp(sumMax / n), worstMax,
                   std::exp(sumRms / n), worstRms, 100 * worstPressure, zeros);
     }
+  }
+  if (jsonPath) {
+    json.resize(json.size() - 2);  // the last ",\n"
+    std::ofstream(jsonPath) << json << "\n]\n";
   }
 }
 

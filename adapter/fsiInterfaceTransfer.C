@@ -74,9 +74,16 @@ void fsiInterfaceTransfer::setUp(const fsi::coupling::StructureParticipant& stru
                         : fsi::coupling::mappingTolerance(structureReference, ip->referenceMesh());
     maps_.emplace_back(new fsi::coupling::L2Projection(structureReference, ip->referenceMesh(), opt));
     const auto& r = maps_.back()->report();
+    // The settings, and whether they are the defaults `fsi map-check` checks with (coupledRunProjection()).
+    const std::vector<std::string> differ = fsi::coupling::differencesFromRunDefaults(opt);
+    std::string changed;
+    for (const std::string& d : differ) changed += (changed.empty() ? "" : ", ") + d;
     Info << "[fsi] patch " << ip->name() << ": " << fsi::coupling::describe(opt).c_str() << " ("
-         << (config_.mapTolerance ? "mapTolerance given" : "tolerance from the chord gaps")
-         << "; the same defaults as fsi map-check)" << endl;
+         << (config_.mapTolerance ? "mapTolerance given" : "tolerance from the chord gaps") << "; "
+         << (differ.empty() ? std::string("the defaults fsi map-check uses")
+                            : "not the defaults fsi map-check uses: " + changed)
+                .c_str()
+         << ")" << endl;
     Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
          << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass()) << " L2 projection (level "
          << r.quadratureLevel << (r.defectCorrection ? "+defect" : "") << "), "

@@ -17,6 +17,8 @@ fsi::coupling::ProjectionOptions projectionOptions(const fsi::coupling::OptionVa
   opt.mass = projectionKind(o.text("projection"));
   opt.gapCorrection = o.flag("gapCorrection");
   opt.keepSide = o.flag("keepSide");
+  opt.evaluation = o.text("evaluation") == "l2" ? fsi::coupling::ProjectionOptions::Evaluation::L2
+                                                : fsi::coupling::ProjectionOptions::Evaluation::Pointwise;
   const std::string& d = o.text("defectCorrection");  // the option table allows only these
   opt.defectCorrection = d == "on"    ? fsi::coupling::ProjectionOptions::Defect::On
                          : d == "off" ? fsi::coupling::ProjectionOptions::Defect::Off

@@ -3,6 +3,7 @@
 
 #include "coupling/interface/InterfaceIO.hpp"
 #include "coupling/mapping/L2Projection.hpp"
+#include "coupling/mapping/MappingDefaults.hpp"
 #include "coupling/mapping/SurfaceSmoothing.hpp"
 #include "coupling/scheme/CouplingScheme.hpp"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
@@ -65,16 +66,28 @@ void fsiInterfaceTransfer::setUp(const fsi::coupling::StructureParticipant& stru
   fsi::coupling::InterfaceMesh structureReference = structure.interfaceMesh();
   for (std::size_t n = 0; n < structureReference.points.size() && !interfaceReference_.empty(); ++n)
     for (std::size_t k = 0; k < 3; ++k) structureReference.points[n][k] += interfaceReference_[3 * n + k];
-  opt.tolerance =
-      config_.mapTolerance ? *config_.mapTolerance : 0.25 * structure.interfaceMesh().meanEdgeLength();
   projectionOptions_ = opt;
   for (const auto& ip : patches_) {
+    // The tolerance from the two surfaces' chord gaps (mappingTolerance, as `fsi map-check`) unless given.
+    opt.tolerance = config_.mapTolerance
+                        ? *config_.mapTolerance
+                        : fsi::coupling::mappingTolerance(structureReference, ip->referenceMesh());
     maps_.emplace_back(new fsi::coupling::L2Projection(structureReference, ip->referenceMesh(), opt));
     const auto& r = maps_.back()->report();
+    // The settings, and whether they are the defaults `fsi map-check` checks with (coupledRunProjection()).
+    const std::vector<std::string> differ = fsi::coupling::differencesFromRunDefaults(opt);
+    std::string changed;
+    for (const std::string& d : differ) changed += (changed.empty() ? "" : ", ") + d;
+    Info << "[fsi] patch " << ip->name() << ": " << fsi::coupling::describe(opt).c_str() << " ("
+         << (config_.mapTolerance ? "mapTolerance given" : "tolerance from the chord gaps") << "; "
+         << (differ.empty() ? std::string("the defaults fsi map-check uses")
+                            : "not the defaults fsi map-check uses: " + changed)
+                .c_str()
+         << ")" << endl;
     Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
          << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass()) << " L2 projection (level "
-         << r.quadratureLevel << (r.defectCorrection ? "+defect" : "") << "), largest gap " << r.maxGap
-         << " m";
+         << r.quadratureLevel << (r.defectCorrection ? "+defect" : "") << "), "
+         << (r.pointwise ? "displacement pointwise, " : "") << "largest gap " << r.maxGap << " m";
     if (r.residedPoints > 0)
       Info << ", " << r.residedPoints << " quadrature points moved to their own side of the skin";
     Info << ", set up in " << r.setupSeconds << " s" << endl;
@@ -222,7 +235,10 @@ void fsiInterfaceTransfer::writeSkins(const fileName& dir, const fileName& surfa
     // The undeformed skin moved with the canopy (the structure's design shape -> the skin's vertices):
     // every new mesh snaps to the same fine surface, not to the last mesh's faceted one.
     const fsi::coupling::InterfaceMesh skin = fsi::coupling::readStlSurface(std::string(surface));
-    const fsi::coupling::L2Projection map(structure.interfaceMesh(), skin, projectionOptions_);
+    fsi::coupling::ProjectionOptions opt = projectionOptions_;
+    opt.tolerance = config_.mapTolerance ? *config_.mapTolerance
+                                         : fsi::coupling::mappingTolerance(structure.interfaceMesh(), skin);
+    const fsi::coupling::L2Projection map(structure.interfaceMesh(), skin, opt);
     if (!map.report().allMapped())
       throw std::runtime_error("remeshSurface " + std::string(surface) + ": " +
                                std::to_string(map.report().unmappedTargetNodes) +

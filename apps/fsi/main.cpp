@@ -327,33 +327,65 @@ int validateCommand(const fs::path& caseDir, fs::path out, bool quiet) {
   return failures == 0 ? 0 : 1;
 }
 
+// The map-check options as written on the command line; every default is the coupled run's
+// (fsi::coupling::coupledRunProjection(), also the adapter's option table's).
+struct MapCheckArgs {
+  std::string variant, level, evaluation, gapCorrection, defect, keepSide;
+};
+
+bool yesNoArg(const std::string& flag, const std::string& value) {
+  if (value == "yes") return true;
+  if (value == "no") return false;
+  throw fsi::InputError(fmt::format("{} {}: must be yes or no", flag, value));
+}
+
+fsi::coupling::ProjectionOptions mapCheckProjection(const MapCheckArgs& args) {
+  fsi::coupling::ProjectionOptions po = fsi::coupling::coupledRunProjection();
+  if (args.level == "auto") {
+    po.quadratureLevel = fsi::coupling::kAutoQuadrature;
+  } else {
+    char* end = nullptr;
+    errno = 0;
+    const long level = std::strtol(args.level.c_str(), &end, 10);
+    if (args.level.empty() || *end != '\0' || errno == ERANGE || level < 1 ||
+        level > fsi::coupling::kMaxQuadratureLevel)
+      throw fsi::InputError(fmt::format("--quadrature-level {}: must be auto or an integer from 1 to {}",
+                                        args.level, fsi::coupling::kMaxQuadratureLevel));
+    po.quadratureLevel = int(level);
+  }
+  if (!fsi::coupling::massMatrixFromName(args.variant, po.mass))
+    throw fsi::InputError(fmt::format("--variant {}: must be one of {}", args.variant,
+                                      fmt::join(fsi::coupling::massMatrixNames(), ", ")));
+  if (args.evaluation == "pointwise")
+    po.evaluation = fsi::coupling::ProjectionOptions::Evaluation::Pointwise;
+  else if (args.evaluation == "l2")
+    po.evaluation = fsi::coupling::ProjectionOptions::Evaluation::L2;
+  else
+    throw fsi::InputError(fmt::format("--evaluation {}: must be pointwise or l2", args.evaluation));
+  po.gapCorrection = yesNoArg("--gap-correction", args.gapCorrection);
+  po.keepSide = yesNoArg("--keep-side", args.keepSide);
+  if (args.defect == "auto")
+    po.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Auto;
+  else if (args.defect == "on")
+    po.defectCorrection = fsi::coupling::ProjectionOptions::Defect::On;
+  else if (args.defect == "off")
+    po.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Off;
+  else
+    throw fsi::InputError(fmt::format("--defect-correction {}: must be auto, on or off", args.defect));
+  return po;
+}
+
 // Exit code 0 when every point mapped, 1 when some did not (the summary says which); bad input throws.
-// A negative tolerance selects the default (0.25 x mean edge length).
+// A negative tolerance selects the default (mappingTolerance: the meshes' chord gaps, as the adapter).
 int mapCheckCommand(const std::string& src, const std::string& dst, double tolerance, const fs::path& jsonOut,
-                    const std::string& variant, const std::string& quadratureLevel,
-                    const std::vector<std::string>& sets, bool gapCorrection, const std::string& defect,
-                    bool keepSide) {
+                    const MapCheckArgs& args, const std::vector<std::string>& sets) {
   // No run to stop cleanly here: Ctrl-C or SIGTERM ends the program as usual (and one sent during start-up
   // does).
   restoreDefaultInterrupts();
   if (!sets.empty() && !fsi::coupling::isSceneFile(src) && !fsi::coupling::isSceneFile(dst))
     throw fsi::InputError("--set applies to a structure scene (SCENE.yaml), but neither side is one");
   fsi::coupling::MapCheckOptions opt;
-  if (quadratureLevel == "auto") {
-    opt.quadratureLevel = fsi::coupling::kAutoQuadrature;
-  } else {
-    char* end = nullptr;
-    errno = 0;
-    const long level = std::strtol(quadratureLevel.c_str(), &end, 10);
-    if (quadratureLevel.empty() || *end != '\0' || errno == ERANGE || level < 1 ||
-        level > fsi::coupling::kMaxQuadratureLevel)
-      throw fsi::InputError(fmt::format("--quadrature-level {}: must be auto or an integer from 1 to {}",
-                                        quadratureLevel, fsi::coupling::kMaxQuadratureLevel));
-    opt.quadratureLevel = int(level);
-  }
-  if (!fsi::coupling::massMatrixFromName(variant, opt.mass))
-    throw fsi::InputError(fmt::format("--variant {}: must be one of {}", variant,
-                                      fmt::join(fsi::coupling::massMatrixNames(), ", ")));
+  opt.projection = mapCheckProjection(args);
   std::ofstream out;
   if (!jsonOut.empty()) {  // opened first so that a bad path fails before the work
     out.open(jsonOut);
@@ -362,36 +394,8 @@ int mapCheckCommand(const std::string& src, const std::string& dst, double toler
   const fsi::coupling::InterfaceMesh a = fsi::coupling::readInterfaceOrScene(src, sets);
   const fsi::coupling::InterfaceMesh b = fsi::coupling::readInterfaceOrScene(dst, sets);
   opt.tolerance = tolerance;
-  opt.gapCorrection = gapCorrection;
-  opt.keepSide = keepSide;
-  if (defect == "auto")
-    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Auto;
-  else if (defect == "on")
-    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::On;
-  else if (defect == "off")
-    opt.defectCorrection = fsi::coupling::ProjectionOptions::Defect::Off;
-  else
-    throw fsi::InputError(fmt::format("--defect-correction {}: must be auto, on or off", defect));
   const fsi::coupling::MapCheckResult r = fsi::coupling::runMapCheck(a, b, opt);
   fmt::print("{}", r.summary());
-  // The pre-flight's options against a coupled run's defaults (fsiCoupling: projection consistent,
-  // quadratureLevel 1, gapCorrection no, keepSide no, defectCorrection off): say where they differ, so that
-  // its numbers are not taken for the run's (issue 39 makes the two one set).
-  std::vector<std::string> differ;
-  if (quadratureLevel != "1")
-    differ.push_back(fmt::format("--quadrature-level {} (the run: quadratureLevel 1)", quadratureLevel));
-  if (variant != "consistent" && variant != "auto")
-    differ.push_back(fmt::format("--variant {} (the run: projection consistent)", variant));
-  if (gapCorrection)
-    differ.emplace_back("gap correction on (the run: gapCorrection no; --no-gap-correction)");
-  if (keepSide) differ.emplace_back("keep-side on (the run: keepSide no; --no-keep-side)");
-  if (defect != "off")
-    differ.push_back(fmt::format("--defect-correction {} (the run: defectCorrection off)", defect));
-  if (!differ.empty())
-    fmt::print(
-        "note: these numbers are with {}; a coupled run with the adapter's defaults maps without them "
-        "(docs/COUPLING.md, \"Options of a coupled run\")\n",
-        fmt::join(differ, ", "));
   if (!jsonOut.empty()) {
     out << r.toJson().dump(2) << "\n";
     if (!out) throw fsi::InputError(fmt::format("{}: write failed", jsonOut.string()));
@@ -507,36 +511,52 @@ int main(int argc, char** argv) {
   std::string mapSrc, mapDst;
   double mapTolerance = -1.0;
   fs::path mapJson;
-  std::string mapVariant = "auto";
-  std::string mapLevel = "auto";
+  const fsi::coupling::ProjectionOptions mapDefaults = fsi::coupling::coupledRunProjection();
+  MapCheckArgs mapArgs{fsi::coupling::toString(mapDefaults.mass),
+                       mapDefaults.quadratureLevel == fsi::coupling::kAutoQuadrature
+                           ? std::string("auto")
+                           : std::to_string(mapDefaults.quadratureLevel),
+                       fsi::coupling::toString(mapDefaults.evaluation),
+                       mapDefaults.gapCorrection ? "yes" : "no",
+                       fsi::coupling::toString(mapDefaults.defectCorrection),
+                       mapDefaults.keepSide ? "yes" : "no"};
   std::vector<std::string> mapSets;
-  bool mapNoGapCorrection = false;
-  bool mapNoKeepSide = false;
-  std::string mapDefect = "auto";
   mapCheck
       ->add_option(
           "source", mapSrc,
-          "first mesh: FILE.msh, FILE.msh:GROUP, CASE_DIR:PATCH or SCENE.yaml (its coupling interface)")
+          "first mesh (the structure): FILE.msh, FILE.msh:GROUP, CASE_DIR:PATCH or SCENE.yaml (its coupling "
+          "interface)")
       ->required();
-  mapCheck->add_option("target", mapDst, "second mesh, same forms")->required();
+  mapCheck->add_option("target", mapDst, "second mesh (the fluid), same forms")->required();
   auto* mapTolOpt = mapCheck->add_option(
       "--tolerance,-t", mapTolerance,
-      "absolute distance beyond which a point is unmapped (default 0.25 x the larger mean edge length)");
+      "absolute distance beyond which a point is unmapped (default, as a coupled run: max(0.25 x the "
+      "source's mean edge, 2 x the two meshes' chord gaps))");
   mapCheck->add_option("--json", mapJson, "also write the results to this JSON file");
-  mapCheck->add_option("--variant", mapVariant,
-                       "projection: auto (default: consistent up to 5000 target nodes, dual above), "
-                       "consistent, lumped or dual");
-  mapCheck->add_option("--quadrature-level", mapLevel,
-                       "split each target triangle into level^2 for quadrature: auto (default, from the "
-                       "meshes' edge-length ratio) or 1..64");
-  mapCheck->add_flag("--no-gap-correction", mapNoGapCorrection,
-                     "project without carrying fields across the gap of curved meshes (docs/PROJECTION.md)");
-  mapCheck->add_flag("--no-keep-side", mapNoKeepSide,
-                     "let points of a body wetted from one side map onto a source facing the other way "
-                     "(the opposite skin of a thin edge; docs/PROJECTION.md)");
-  mapCheck->add_option("--defect-correction", mapDefect,
-                       "auto (default: on when the target is 1.5x coarser than the source), on or off "
-                       "(docs/PROJECTION.md)");
+  // Every default below is the coupled run's (coupledRunProjection()): the check measures what the run gets.
+  mapCheck->add_option("--variant", mapArgs.variant,
+                       "L2 projection: consistent, lumped, dual or auto (consistent up to 5000 target nodes, "
+                       "dual above); default " +
+                           mapArgs.variant);
+  mapCheck->add_option("--evaluation", mapArgs.evaluation,
+                       "consistent transfer: pointwise (nearest projection) or l2 (the L2 projection); "
+                       "default " +
+                           mapArgs.evaluation);
+  mapCheck->add_option("--quadrature-level", mapArgs.level,
+                       "split each target triangle into level^2 for quadrature: auto (from the meshes' "
+                       "edge-length ratio) or 1..64; default " +
+                           mapArgs.level);
+  mapCheck->add_option("--gap-correction", mapArgs.gapCorrection,
+                       "yes|no: carry fields across the gap of curved meshes (docs/PROJECTION.md); default " +
+                           mapArgs.gapCorrection);
+  mapCheck->add_option("--keep-side", mapArgs.keepSide,
+                       "yes|no: map points of a body wetted from one side onto the source facing their way "
+                       "(thin edges; docs/PROJECTION.md); default " +
+                           mapArgs.keepSide);
+  mapCheck->add_option("--defect-correction", mapArgs.defect,
+                       "auto (on when the target is 1.5x coarser than the source), on or off "
+                       "(docs/PROJECTION.md); default " +
+                           mapArgs.defect);
   mapCheck->add_option("--set", mapSets,
                        "override a value of the scene side(s): key.path=value (repeatable)");
 
@@ -610,8 +630,8 @@ int main(int argc, char** argv) {
     if (*mapCheck) {
       if (mapTolOpt->count() > 0 && !(mapTolerance >= 0.0 && std::isfinite(mapTolerance)))
         throw fsi::InputError(fmt::format("--tolerance {}: must be a finite distance >= 0", mapTolerance));
-      return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson,
-                             mapVariant, mapLevel, mapSets, !mapNoGapCorrection, mapDefect, !mapNoKeepSide);
+      return mapCheckCommand(mapSrc, mapDst, mapTolOpt->count() > 0 ? mapTolerance : -1.0, mapJson, mapArgs,
+                             mapSets);
     }
     if (*plot) return plotCommand(plotDir, plotOut, plotColor);
     if (*generate) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "coupling/mapping/projection/GapGradient.hpp"
+#include "coupling/mapping/projection/PointwiseEvaluation.hpp"
 #include "coupling/mapping/projection/ProjectionRegistry.hpp"
 #include "coupling/mapping/projection/Quadrature.hpp"
 #include "coupling/mapping/projection/SourcePoints.hpp"
@@ -76,6 +77,8 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
       source, target, tf, sf, qp, perTriangle, level, sources, gradient ? &*gradient : nullptr, sourceEdge};
   variant_ = variant.make(setup, report_);  // assembles (and for the consistent variant factors) H
   report_.assemblySeconds = secondsSince(t0) - report_.factorSeconds;
+  nodeMapped_ = variant_->rows().nodeMapped;
+  if (options.evaluation == ProjectionOptions::Evaluation::Pointwise) setUpPointwise(search, target);
 
   const bool coarserTarget = target.meanEdgeLength() >= kDefectRatio * source.meanEdgeLength();
   if (options.defectCorrection == ProjectionOptions::Defect::On ||
@@ -85,6 +88,7 @@ L2Projection::L2Projection(const InterfaceMesh& source, const InterfaceMesh& tar
     back.mass = MassMatrix::Dual;
     back.quadratureLevel = kAutoQuadrature;
     back.defectCorrection = ProjectionOptions::Defect::Off;
+    back.evaluation = ProjectionOptions::Evaluation::L2;
     back_ = std::make_unique<L2Projection>(target, source, back);
     // A source node P cannot reach would feed H a value pulled towards 0: only correct with P complete.
     if (back_->report().allMapped() || options.defectCorrection == ProjectionOptions::Defect::On) {
@@ -109,7 +113,22 @@ const L2Projection::SparseRows& L2Projection::targetMass() const {
   return variant_->rows().m;
 }
 const std::vector<unsigned char>& L2Projection::targetNodeMapped() const {
-  return variant_->rows().nodeMapped;
+  return nodeMapped_;
+}
+
+// Evaluation::Pointwise: the target nodes themselves are searched; a node farther than the tolerance is
+// unmapped like a node whose support has an unmapped quadrature point.
+void L2Projection::setUpPointwise(const SurfaceSearch& search, const InterfaceMesh& target) {
+  pointwise_ = std::make_unique<PointwiseEvaluation>(search, target);
+  report_.pointwise = true;
+  report_.maxNodeGap = pointwise_->maxGap();
+  for (int i = 0; i < nt_; ++i) {
+    if (pointwise_->nodeMapped()[std::size_t(i)] || !nodeMapped_[std::size_t(i)]) continue;
+    nodeMapped_[std::size_t(i)] = 0;
+    ++report_.unmappedTargetNodes;
+    if (report_.firstUnmappedNodes.size() < ProjectionReport::kListed)
+      report_.firstUnmappedNodes.push_back(i);
+  }
 }
 const Eigen::VectorXd& L2Projection::lumpedMass() const {
   return variant_->rows().lumped;
@@ -128,6 +147,10 @@ int autoQuadratureLevel(const InterfaceMesh& source, const InterfaceMesh& target
 // and moment exactly as Hᵀ does.
 void L2Projection::apply(const double* us, double* ut, int components) const {
   checkComponents(components);
+  if (pointwise_) {
+    pointwise_->apply(us, ut, components);
+    return;
+  }
   variant_->apply(us, ut, components);
   if (!back_) return;
   back_->apply(ut, defectSource_.data(), components);
@@ -165,6 +188,7 @@ void L2Projection::applyTranspose(const Eigen::VectorXd& ft, Eigen::VectorXd& fs
 }
 
 L2Projection::SparseRows L2Projection::operatorMatrix(double dropTolerance) const {
+  if (pointwise_) return pointwise_->matrix();
   if (!back_) return variant_->matrix(dropTolerance);
   // The corrected operator, column by column.
   std::vector<Eigen::Triplet<double, int>> entries;

@@ -30,6 +30,7 @@
 namespace fsi::coupling {
 
 class ProjectionVariant;
+class PointwiseEvaluation;
 
 /// Auto: Consistent up to kAutoConsistentMaxNodes target nodes, Dual above (same accuracy, sparse, and its
 /// apply stays above 10⁷ nodes/s where the consistent solves fall below it; docs/PROJECTION.md).
@@ -97,7 +98,21 @@ struct ProjectionOptions {
   /// triangle facing its own way instead. Surfaces wetted from both sides (a baffle, a sail) are left
   /// alone. See docs/PROJECTION.md ("Thin edges").
   bool keepSide = true;
+  /// How u_t = H u_s (apply) evaluates the source field at the target nodes. L2 (the struct's default): the
+  /// L2 projection above (with its corrections). Pointwise: each target node takes the source field at its
+  /// closest source point (nearest projection, PointwiseEvaluation) — second order at the nodes at any mesh
+  /// ratio, where the L2 projection's averaging over a coarse target's hat functions is not. applyTranspose
+  /// stays Hᵀ of the L2 projection either way (smooth, exact total force). See docs/PROJECTION.md,
+  /// "Consistent direction: pointwise or L2".
+  enum class Evaluation { L2, Pointwise } evaluation = Evaluation::L2;
 };
+
+inline const char* toString(ProjectionOptions::Evaluation e) {
+  return e == ProjectionOptions::Evaluation::Pointwise ? "pointwise" : "l2";
+}
+inline const char* toString(ProjectionOptions::Defect d) {
+  return d == ProjectionOptions::Defect::On ? "on" : d == ProjectionOptions::Defect::Off ? "off" : "auto";
+}
 
 /// Share of the target's area that must see the source facing one way for the interface to count as wetted
 /// from one side (ProjectionOptions::keepSide). A membrane wetted from both sides gives about one half.
@@ -150,6 +165,8 @@ struct ProjectionReport {
   int unmappedTargetNodes = 0;
   std::vector<int> firstUnmappedNodes;  ///< up to kListed
   double maxGap = 0.0;                  ///< largest distance of a mapped quadrature point to the source
+  bool pointwise = false;   ///< apply() evaluates at the target nodes (ProjectionOptions::evaluation)
+  double maxNodeGap = 0.0;  ///< pointwise: largest distance of a mapped target node to the source
   double searchSeconds = 0.0, assemblySeconds = 0.0, factorSeconds = 0.0, setupSeconds = 0.0;
   static constexpr std::size_t kListed = 10;
   bool allMapped() const { return unmappedQuadraturePoints == 0 && unmappedTargetNodes == 0; }
@@ -172,8 +189,9 @@ class L2Projection {
   MassMatrix mass() const { return mass_; }  ///< never Auto: the variant it chose
   const ProjectionReport& report() const { return report_; }
 
-  /// u_t = H u_s for `components` = 1 or 3 (vectors xyz-interleaved). us has sourceSize()·components values,
-  /// ut targetSize()·components. No allocation; uses internal scratch, so one object must not apply from two
+  /// u_t = H u_s (with Evaluation::Pointwise: E u_s, the source field at each target node's closest point)
+  /// for `components` = 1 or 3 (vectors xyz-interleaved). us has sourceSize()·components values, ut
+  /// targetSize()·components. No allocation; uses internal scratch, so one object must not apply from two
   /// threads at once.
   void apply(const double* us, double* ut, int components = 1) const;
   /// f_s = Hᵀ f_t: the conservative transfer (forces target → source), same conventions as apply().
@@ -193,13 +211,18 @@ class L2Projection {
   /// principle (the inverse of a mass matrix has no zero entries), so it is solved column by column and
   /// entries below dropTolerance × (largest entry in its row) are dropped: for inspection and small meshes;
   /// apply() never forms it. With the defect correction, the corrected operator, by one apply per source
-  /// node (and C, targetMass() are those of the uncorrected H).
+  /// node (and C, targetMass() are those of the uncorrected H). With Evaluation::Pointwise: E, the matrix
+  /// apply() uses (applyTranspose() is then not its transpose but Hᵀ of the L2 projection).
   SparseRows operatorMatrix(double dropTolerance = 0.0) const;
 
  private:
+  void setUpPointwise(const SurfaceSearch& search, const InterfaceMesh& target);
+
   int ns_ = 0, nt_ = 0;
   MassMatrix mass_;
   ProjectionReport report_;
+  std::unique_ptr<PointwiseEvaluation> pointwise_;  // u_t = E u_s (Evaluation::Pointwise), or null
+  std::vector<unsigned char> nodeMapped_;           // the L2 rows' and the pointwise evaluation's, combined
   std::unique_ptr<ProjectionVariant> variant_;  // the uncorrected H and Hᵀ (coupling/mapping/projection/)
   std::unique_ptr<L2Projection> back_;          // P (target → source) of the defect correction, or null
   mutable std::vector<double> defectSource_, defectTarget_;

@@ -1,6 +1,7 @@
 #include "coupling/mapping/MapCheck.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +21,7 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 using Clock = std::chrono::steady_clock;
+constexpr double kPi = 3.14159265358979323846;
 
 // The test fields, in coordinates centred on and scaled by the bounding box of both meshes so that their
 // size does not depend on the units or the position of the meshes.
@@ -36,6 +38,17 @@ struct TestFields {
   double quadratic(const Vec3& x) const {
     const Vec3 y = local(x);
     return y[0] * y[0] + 0.5 * y[0] * y[1] - y[1] * y[2] + 0.7 * y[1] * y[1] - 0.4 * y[2] * y[2] + linear(x);
+  }
+  // Plane waves (in the scaled coordinates) of random direction and phase: 3 of wavelength 1/3 (the
+  // interface's size) and 3 of 8 coarse edges (its mesh's scale).
+  std::array<Vec3, 6> k{};
+  std::array<double, 6> phase{};
+  double wave(const Vec3& x) const {
+    const Vec3 y = local(x);
+    double s = 0.0;
+    for (std::size_t m = 0; m < k.size(); ++m)
+      s += std::sin(k[m][0] * y[0] + k[m][1] * y[1] + k[m][2] * y[2] + phase[m]);
+    return s / double(k.size());
   }
 };
 
@@ -54,6 +67,17 @@ TestFields makeFields(const InterfaceMesh& a, const InterfaceMesh& b) {
     extent = std::max(extent, hi[k] - lo[k]);
   }
   f.scale = extent > 0.0 ? extent : 1.0;
+  const double coarse = std::max(a.meanEdgeLength(), b.meanEdgeLength()) / f.scale;
+  std::mt19937 rng(3939);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> ph(0.0, 2.0 * kPi);
+  for (std::size_t m = 0; m < f.k.size(); ++m) {
+    const double lambda = m < 3 || !(coarse > 0.0) ? 1.0 / 3.0 : 8.0 * coarse;
+    Vec3 d{g(rng), g(rng), g(rng)};
+    const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (std::size_t c = 0; c < 3; ++c) f.k[m][c] = 2.0 * kPi / lambda * d[c] / n;
+    f.phase[m] = ph(rng);
+  }
   return f;
 }
 
@@ -115,9 +139,11 @@ DirectionCheck check(const InterfaceMesh& src, const InterfaceMesh& dst, const T
   d.mass = h.mass();
   const auto linear = [&](const Vec3& x) { return fields.linear(x); };
   const auto quadratic = [&](const Vec3& x) { return fields.quadratic(x); };
+  const auto wave = [&](const Vec3& x) { return fields.wave(x); };
   const auto project = [&](const double* us, double* ut) { h.apply(us, ut); };
   d.linear = fieldError(h, src, dst, linear, project);
   d.quadratic = fieldError(h, src, dst, quadratic, project);
+  d.wave = fieldError(h, src, dst, wave, project);
   // Nearest-point interpolation, from the same search as the projection's.
   const SurfaceSearch search(src);
   std::vector<int> tri;
@@ -134,6 +160,7 @@ DirectionCheck check(const InterfaceMesh& src, const InterfaceMesh& dst, const T
   };
   d.linearNearest = fieldError(h, src, dst, linear, nearest);
   d.quadraticNearest = fieldError(h, src, dst, quadratic, nearest);
+  d.waveNearest = fieldError(h, src, dst, wave, nearest);
 
   // Smoothness: the nodal share of a unit pressure on the target, carried back by Hᵀ, against the source's
   // own shares ∫φ_j (a third of each fan triangle's area per corner, a centre's split over its face).
@@ -259,6 +286,44 @@ void checkFinite(const MapCheckResult& r) {
   }
 }
 
+// Warnings, each with the setting that would help (issue 39): surfaces far apart against the finer mesh's
+// edges (the chord gap), the consistent transfer behind nearest-point interpolation on a field of the
+// interface's own length scales, source nodes the conservative transfer leaves without force.
+std::vector<std::string> advise(const MapCheckResult& r, const InterfaceMesh& a, const InterfaceMesh& b) {
+  std::vector<std::string> out;
+  const double finer = std::min(a.meanEdgeLength(), b.meanEdgeLength());
+  double gap = 0.0;
+  for (const DirectionCheck& d : r.directions) gap = std::max(gap, d.report.maxGap);
+  if (gap > kAdviseGapShare * finer)
+    out.push_back(fmt::format(
+        "the surfaces are up to {:.3g} apart ({:.0f} % of the finer mesh's mean edge {:.3g}; chord gaps "
+        "{:.3g} / {:.3g}, tolerance {:.3g}): a field varying across the surface differs by the gap times its "
+        "normal derivative, and H^T's moment is off by as much: keep conserveMoment yes; refining the "
+        "coarser mesh shrinks the gap as h^2",
+        gap, 100.0 * gap / finer, finer, chordGap(a), chordGap(b), r.tolerance));
+  for (const DirectionCheck& d : r.directions) {
+    const std::string dir = fmt::format("{} -> {}", d.report.source, d.report.target);
+    const double rmax = d.wave.max / std::max(d.waveNearest.max, 1e-300);
+    const double rrms = d.wave.rms / std::max(d.waveNearest.rms, 1e-300);
+    if (rmax > kAdviseBehindNearest || rrms > kAdviseBehindNearest)
+      out.push_back(fmt::format(
+          "{}: on a field of the interface's own length scales the consistent transfer's error is {:.2f}x "
+          "(max) / {:.2f}x (RMS) nearest-point interpolation's: use evaluation pointwise (fsiCoupling "
+          "`evaluation pointwise;`, map-check --evaluation pointwise)",
+          dir, rmax, rrms));
+    if (d.zeroForceNodes > 0) {
+      // Explicit level: auto (about half a source edge per sub-triangle); auto already: twice as fine.
+      const bool automatic = r.projection.quadratureLevel == kAutoQuadrature;
+      const std::string advised = automatic ? std::to_string(2 * d.report.quadratureLevel) : "auto";
+      out.push_back(fmt::format(
+          "{}: H^T leaves {} of {} source nodes without force (quadrature level {} samples the source too "
+          "sparsely): use quadratureLevel {} (fsiCoupling; map-check --quadrature-level {})",
+          dir, d.zeroForceNodes, d.report.sourceNodes, d.report.quadratureLevel, advised, advised));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const MapCheckOptions& options) {
@@ -266,16 +331,16 @@ MapCheckResult runMapCheck(const InterfaceMesh& a, const InterfaceMesh& b, const
   MapCheckResult r;
   r.meshA = a.name;
   r.meshB = b.name;
-  r.mass = options.mass;
-  r.tolerance =
-      options.tolerance >= 0.0 ? options.tolerance : 0.25 * std::max(a.meanEdgeLength(), b.meanEdgeLength());
+  r.mass = options.projection.mass;
+  r.tolerance = options.tolerance >= 0.0 ? options.tolerance : mappingTolerance(a, b);
   const TestFields fields = makeFields(a, b);
-  const ProjectionOptions po{
-      options.mass,    r.tolerance, options.quadratureLevel, options.gapCorrection, options.defectCorrection,
-      options.keepSide};
+  ProjectionOptions po = options.projection;
+  po.tolerance = r.tolerance;
+  r.projection = po;
   r.directions[0] = check(a, b, fields, po, options);
   r.directions[1] = check(b, a, fields, po, options);
   checkFinite(r);
+  r.advice = advise(r, a, b);
   return r;
 }
 
@@ -288,6 +353,9 @@ nlohmann::json MapCheckResult::toJson() const {
     j["quadratic_error"] = {{"max", d.quadratic.max}, {"rms", d.quadratic.rms}};
     j["linear_error_nearest_point"] = {{"max", d.linearNearest.max}, {"rms", d.linearNearest.rms}};
     j["quadratic_error_nearest_point"] = {{"max", d.quadraticNearest.max}, {"rms", d.quadraticNearest.rms}};
+    j["wave_error"] = {{"max", d.wave.max}, {"rms", d.wave.rms}};
+    j["wave_error_nearest_point"] = {{"max", d.waveNearest.max}, {"rms", d.waveNearest.rms}};
+    j["evaluation"] = d.report.pointwise ? "pointwise" : "l2";
     j["uniform_pressure_transfer"] = {{"rms_deviation", d.pressureRms},
                                       {"max_deviation", d.pressureMax},
                                       {"zero_force_nodes", d.zeroForceNodes}};
@@ -302,9 +370,46 @@ nlohmann::json MapCheckResult::toJson() const {
           {"mesh_b", meshB},
           {"tolerance", tolerance},
           {"variant", toString(mass)},
+          {"settings", describe(projection)},
+          {"differs_from_run_defaults", differencesFromRunDefaults(projection)},
+          {"advice", advice},
           {"errors_relative_to", "range of the exact field over the mapped target nodes"},
           {"directions", dirs},
           {"all_mapped", allMapped()}};
+}
+
+namespace {
+// The summary's end: the warnings, then whether every point mapped (and the first that did not).
+std::string closingLines(const MapCheckResult& result) {
+  std::string s;
+  for (const std::string& a : result.advice) s += "warning: " + a + "\n";
+  if (result.allMapped()) {
+    s += "all points mapped\n";
+    return s;
+  }
+  for (const DirectionCheck& d : result.directions) {
+    const ProjectionReport& r = d.report;
+    if (r.allMapped()) continue;
+    s += fmt::format(
+        "{} -> {}: {} target quadrature points were not mapped (farther than {:.4g} from the source); "
+        "{} target nodes affected",
+        r.source, r.target, r.unmappedQuadraturePoints, result.tolerance, r.unmappedTargetNodes);
+    if (!r.firstUnmappedNodes.empty()) s += fmt::format(", first: {}", fmt::join(r.firstUnmappedNodes, " "));
+    s += "\n";
+    for (const UnmappedPoint& p : r.firstUnmappedPoints)
+      s += fmt::format("    point ({:.6g}, {:.6g}, {:.6g}) at distance {:.4g}\n", p.x[0], p.x[1], p.x[2],
+                       p.distance);
+  }
+  return s;
+}
+}  // namespace
+
+std::string MapCheckResult::settingsLines() const {
+  const std::vector<std::string> differ = differencesFromRunDefaults(projection);
+  return fmt::format("settings: {}\n          {}\n\n", describe(projection),
+                     differ.empty()
+                         ? std::string("(the coupled run's defaults, coupledRunProjection())")
+                         : fmt::format("(not the coupled run's defaults: {})", fmt::join(differ, ", ")));
 }
 
 std::string MapCheckResult::summary() const {
@@ -312,7 +417,7 @@ std::string MapCheckResult::summary() const {
   const DirectionCheck& ba = directions[1];
   std::string s = fmt::format("map-check  A = {} ({} nodes)\n           B = {} ({} nodes)\n", meshA,
                               ab.report.sourceNodes, meshB, ab.report.targetNodes);
-  s += fmt::format("tolerance {:.4g} (absolute), {} projection\n\n", tolerance, toString(mass));
+  s += settingsLines();
   auto row = [&](const std::string& label, const std::string& x, const std::string& y) {
     s += fmt::format("  {:<44} {:>22} {:>22}\n", label, x, y);
   };
@@ -373,6 +478,15 @@ std::string MapCheckResult::summary() const {
       "  nearest-point interpolation: quadratic, rms",
       [](const DirectionCheck& d) { return d.quadraticNearest.rms; }, "{:.3e}");
   both(
+      "own-scale wave field, max / rms error",
+      [](const DirectionCheck& d) { return fmt::format("{:.2e}/{:.2e}", d.wave.max, d.wave.rms); }, "{}");
+  both(
+      "  nearest-point interpolation: wave, max / rms",
+      [](const DirectionCheck& d) {
+        return fmt::format("{:.2e}/{:.2e}", d.waveNearest.max, d.waveNearest.rms);
+      },
+      "{}");
+  both(
       "uniform pressure by H^T: rms deviation", [](const DirectionCheck& d) { return d.pressureRms; },
       "{:.3e}");
   both(
@@ -402,24 +516,7 @@ std::string MapCheckResult::summary() const {
       "transpose, vector field [ms]",
       [](const DirectionCheck& d) { return 1e3 * d.applyTransposeSecondsVector; }, "{:.4f}");
   s += "\n";
-  if (allMapped()) {
-    s += "all points mapped\n";
-    return s;
-  }
-  for (const DirectionCheck& d : directions) {
-    const ProjectionReport& r = d.report;
-    if (r.allMapped()) continue;
-    s += fmt::format(
-        "{} -> {}: {} target quadrature points were not mapped (farther than {:.4g} from the source); "
-        "{} target nodes affected",
-        r.source, r.target, r.unmappedQuadraturePoints, tolerance, r.unmappedTargetNodes);
-    if (!r.firstUnmappedNodes.empty()) s += fmt::format(", first: {}", fmt::join(r.firstUnmappedNodes, " "));
-    s += "\n";
-    for (const UnmappedPoint& p : r.firstUnmappedPoints)
-      s += fmt::format("    point ({:.6g}, {:.6g}, {:.6g}) at distance {:.4g}\n", p.x[0], p.x[1], p.x[2],
-                       p.distance);
-  }
-  return s;
+  return s + closingLines(*this);
 }
 
 }  // namespace fsi::coupling

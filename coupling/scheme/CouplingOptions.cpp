@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "coupling/mapping/L2Projection.hpp"
+#include "coupling/mapping/MappingDefaults.hpp"
 #include "coupling/scheme/Equilibrium.hpp"
 #include "coupling/scheme/acceleration/AccelerationRegistry.hpp"
 #include "structure/scene/NearestName.hpp"
@@ -441,27 +442,33 @@ OptionSchema couplingOptionSchema() {
   coupled.push_back(maxIterations);
   coupled.push_back(integerOption("extrapolation", "1", Bound{0, true}, Bound{2, true},
                                   "predictor order of a window's first displacement (staggered: stability)"));
+  // The projection's defaults are the one set `fsi map-check` uses too (coupledRunProjection(); why these:
+  // docs/PROJECTION.md, "Defaults in a coupled run").
+  const ProjectionOptions run = coupledRunProjection();
   coupled.push_back(
-      wordSpec("projection", OptionType::Choice, toString(MassMatrix::Consistent), massMatrixNames(),
+      wordSpec("projection", OptionType::Choice, toString(run.mass), massMatrixNames(),
                "L2 projection between the non-matching interface meshes (auto: consistent up to "
-               "5000 fluid points, dual above)"));
+               "5000 fluid points, dual above); its transpose carries the loads"));
+  coupled.push_back(
+      wordSpec("evaluation", OptionType::Choice, toString(run.evaluation), {"pointwise", "l2"},
+               "displacement to the fluid: pointwise (each fluid point at its closest structure "
+               "point: nearest projection) or l2 (the L2 projection)"));
   OptionSpec quadrature = integerOption(
-      "quadratureLevel", "1", Bound{1, true}, Bound{double(kMaxQuadratureLevel), true},
+      "quadratureLevel",
+      run.quadratureLevel == kAutoQuadrature ? "auto" : std::to_string(run.quadratureLevel), Bound{1, true},
+      Bound{double(kMaxQuadratureLevel), true},
       "sub-triangles per fluid face edge for the projection's quadrature; auto: from the meshes' edge ratio");
   quadrature.choices = {"auto"};
   coupled.push_back(quadrature);
   coupled.push_back(
-      wordSpec("defectCorrection", OptionType::Choice, "off", {"auto", "on", "off"},
+      wordSpec("defectCorrection", OptionType::Choice, toString(run.defectCorrection), {"auto", "on", "off"},
                "projection: remove its averaging error where the fluid mesh is 1.5x coarser than "
                "the structure's (auto) or always/never"));
-  // The adapter keeps the projection of the validated runs by default (consistent, level 1, no corrections):
-  // with auto / auto / yes / auto the main job's canopy (ramair-kt, coupled.settings) hit the mesh guard in
-  // window 149 of 200 (docs/PROJECTION.md, "Defaults in a coupled run"); map-check reports both.
-  coupled.push_back(wordSpec("gapCorrection", OptionType::Switch, "no", {},
+  coupled.push_back(wordSpec("gapCorrection", OptionType::Switch, run.gapCorrection ? "yes" : "no", {},
                              "projection: carry fields across the gap between curved non-matching meshes "
                              "(exact linear fields and moment; docs/PROJECTION.md)"));
   coupled.push_back(
-      wordSpec("keepSide", OptionType::Switch, "no", {},
+      wordSpec("keepSide", OptionType::Switch, run.keepSide ? "yes" : "no", {},
                "projection: on a body wetted from one side, map each fluid point onto the "
                "structure's skin facing its own way (thin trailing edges; docs/PROJECTION.md)"));
   coupled.push_back(realOption(
@@ -474,7 +481,7 @@ OptionSchema couplingOptionSchema() {
                              "(coupling/mapping/MomentConservation.hpp)"));
   OptionSpec mapTolerance = realOption("mapTolerance", "", Bound{0, false}, std::nullopt,
                                        "[m] fluid points farther than this from the structure stop the run");
-  mapTolerance.defaultNote = "0.25 x mean structure edge length";
+  mapTolerance.defaultNote = "max(0.25 x mean structure edge, 2 x the chord gaps of both meshes)";
   coupled.push_back(mapTolerance);
   OptionSpec subcycles = integerOption("subcycles", "1", Bound{1, true}, std::nullopt,
                                        "at least this many structural steps per fluid step");

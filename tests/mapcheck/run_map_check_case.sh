@@ -4,7 +4,8 @@
 #   fsi map-check structure.yaml .:PATCH
 # for every patch of the case's fsiCoupling function object. Each must map all points both ways, reproduce a
 # linear field (both interfaces are planar and cover the same surface, so only round-off remains) and transfer
-# force and moment conservatively.
+# force and moment conservatively; it prints the coupled run's settings (the same defaults) and names any that
+# differ.
 # Usage: run_map_check_case.sh NAME FSI WORK_DIR
 set -uo pipefail
 name=$1 fsi=$2 work=$3
@@ -29,12 +30,14 @@ for patch in $patches; do
   "$fsi" map-check structure.yaml ".:$patch" --json "map-check-$patch.json" | tee "map-check-$patch.log"
   rc=${PIPESTATUS[0]}
   [ $rc -eq 0 ] || fail "map-check on patch $patch exited with $rc"
-  # its defaults are not a coupled run's: it says where (gap correction, keep-side, quadrature, defect)
-  grep -q "note: these numbers are with .*gap correction on (the run: gapCorrection no" "map-check-$patch.log" ||
-    fail "map-check does not say where its defaults differ from the coupled run's"
-  "$fsi" map-check structure.yaml ".:$patch" --no-gap-correction --no-keep-side --quadrature-level 1 \
-    --defect-correction off > "map-check-$patch-run.log" || fail "map-check with the run's defaults failed"
-  ! grep -q "^note: these numbers" "map-check-$patch-run.log" || fail "map-check with the run's defaults still notes a difference"
+  # its defaults are the coupled run's (coupledRunProjection(), the adapter's option table's): it says so
+  grep -q "^settings: projection consistent, evaluation pointwise, quadratureLevel auto" "map-check-$patch.log" &&
+    grep -q "(the coupled run's defaults" "map-check-$patch.log" ||
+    fail "map-check does not print the coupled run's settings"
+  "$fsi" map-check structure.yaml ".:$patch" --evaluation l2 --quadrature-level 1 > "map-check-$patch-l2.log" ||
+    fail "map-check --evaluation l2 --quadrature-level 1 failed"
+  grep -q "(not the coupled run's defaults: evaluation l2, quadratureLevel 1)" "map-check-$patch-l2.log" ||
+    fail "map-check with other settings does not name them"
   /usr/bin/python3 - "map-check-$patch.json" <<'PY' || fail "map-check on patch $patch: errors too large"
 import json, sys
 r = json.load(open(sys.argv[1]))

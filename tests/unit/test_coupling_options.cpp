@@ -11,6 +11,7 @@
 
 #include "TestScenes.hpp"
 #include "coupling/StructureParticipant.hpp"
+#include "coupling/mapping/MappingDefaults.hpp"
 #include "coupling/scheme/CouplingOptions.hpp"
 #include "coupling/scheme/acceleration/AccelerationRegistry.hpp"
 #include "coupling/scheme/acceleration/Aitken.hpp"
@@ -220,12 +221,21 @@ TEST(CouplingOptions, ValuesDefaultsAndLists) {
   const OptionValues d = schema.validate(minimal());
   EXPECT_EQ(d.text("scheme"), "staggered");
   EXPECT_EQ(d.integer("extrapolation"), 1);
-  // the projection of the validated coupled runs (docs/PROJECTION.md, "Defaults in a coupled run")
+  // the one set of projection defaults, fsi map-check's too (coupledRunProjection(); docs/PROJECTION.md,
+  // "Defaults in a coupled run")
   EXPECT_EQ(d.text("projection"), "consistent");
-  EXPECT_FALSE(d.isWord("quadratureLevel"));
-  EXPECT_EQ(d.integer("quadratureLevel"), 1);
+  EXPECT_EQ(d.text("evaluation"), "pointwise");
+  EXPECT_TRUE(d.isWord("quadratureLevel"));  // auto
   EXPECT_FALSE(d.flag("gapCorrection"));
   EXPECT_EQ(d.text("defectCorrection"), "off");
+  EXPECT_FALSE(d.flag("keepSide"));
+  const ProjectionOptions run = coupledRunProjection();
+  EXPECT_EQ(d.text("projection"), toString(run.mass));
+  EXPECT_EQ(d.text("evaluation"), toString(run.evaluation));
+  EXPECT_EQ(d.flag("gapCorrection"), run.gapCorrection);
+  EXPECT_EQ(d.text("defectCorrection"), toString(run.defectCorrection));
+  EXPECT_EQ(d.flag("keepSide"), run.keepSide);
+  EXPECT_EQ(run.quadratureLevel, kAutoQuadrature);
   EXPECT_TRUE(schema.validate(minimal({{"quadratureLevel", {"auto"}}})).isWord("quadratureLevel"));
   EXPECT_FALSE(schema.validate(minimal({{"quadratureLevel", {"3"}}})).isWord("quadratureLevel"));
   EXPECT_EQ(schema.validate(minimal({{"quadratureLevel", {"3"}}})).integer("quadratureLevel"), 3);

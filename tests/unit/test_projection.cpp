@@ -707,6 +707,10 @@ TEST(ProjectionMapCheck, ReportsAccuracyAndConservation) {
   const InterfaceMesh a = triangleGrid(12, 12, kCylinder, 0.2, 1);
   const InterfaceMesh b = quadGrid(17, 15, kCylinder, 0.2, 2);
   MapCheckOptions opt;
+  // The library's full corrections (gap and defect correction, keep side, L2 evaluation) and the auto
+  // variant, not the coupled run's defaults: what this test is about.
+  opt.projection = ProjectionOptions{};
+  opt.projection.mass = MassMatrix::Auto;
   opt.applyRepeats = 2;
   const MapCheckResult r = runMapCheck(a, b, opt);
   ASSERT_TRUE(r.allMapped());

@@ -366,6 +366,10 @@ TEST(ProjectionSphere, MapCheckReportsItAll) {
   // point and the smoothness of the force transfer, both ways.
   const auto& [fine, coarse] = spheres();
   MapCheckOptions opt;
+  // The library's full corrections (gap and defect correction, keep side, L2 evaluation) and the auto
+  // variant, not the coupled run's defaults: what this test is about.
+  opt.projection = ProjectionOptions{};
+  opt.projection.mass = MassMatrix::Auto;
   opt.applyRepeats = 1;
   const MapCheckResult r = runMapCheck(fine, coarse, opt);
   ASSERT_TRUE(r.allMapped());

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "NodalError.hpp"
 #include "coupling/mapping/L2Projection.hpp"
 #include "coupling/mapping/MapCheck.hpp"
 #include "coupling/mapping/MappingDefaults.hpp"
@@ -240,21 +241,8 @@ std::vector<double> nearestProjection(const InterfaceMesh& src, const InterfaceM
   return ut;
 }
 
-struct Error {
-  double max = 0, rms = 0;
-};
-Error nodalError(const InterfaceMesh& m, const std::vector<double>& u, const Field& f) {
-  double lo = HUGE_VAL, hi = -HUGE_VAL, mx = 0, s2 = 0;
-  for (std::size_t i = 0; i < m.points.size(); ++i) {
-    const double e = f(m.points[i]);
-    lo = std::min(lo, e);
-    hi = std::max(hi, e);
-    mx = std::max(mx, std::abs(u[i] - e));
-    s2 += (u[i] - e) * (u[i] - e);
-  }
-  const double range = hi > lo ? hi - lo : 1.0;
-  return {mx / range, std::sqrt(s2 / double(m.points.size())) / range};
-}
+using testing::nodalError;
+using Error = testing::NodalError;
 
 std::vector<double> sample(const InterfaceMesh& m, const Field& f) {
   std::vector<double> v;

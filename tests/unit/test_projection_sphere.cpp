@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "NodalError.hpp"
 #include "coupling/interface/SurfaceSearch.hpp"
 #include "coupling/mapping/L2Projection.hpp"
 #include "coupling/mapping/MapCheck.hpp"
@@ -111,21 +112,8 @@ std::vector<double> nearestProjection(const InterfaceMesh& src, const InterfaceM
   return ut;
 }
 
-struct NodalError {
-  double max = 0.0, rms = 0.0;
-};
-// Nodal error against the analytic field, relative to its range over the target nodes.
-NodalError nodalError(const InterfaceMesh& m, const std::vector<double>& u, const Field& f) {
-  double lo = HUGE_VAL, hi = -HUGE_VAL, mx = 0.0, s2 = 0.0;
-  for (std::size_t i = 0; i < m.points.size(); ++i) {
-    const double e = f(m.points[i]);
-    lo = std::min(lo, e);
-    hi = std::max(hi, e);
-    mx = std::max(mx, std::abs(u[i] - e));
-    s2 += (u[i] - e) * (u[i] - e);
-  }
-  return {mx / (hi - lo), std::sqrt(s2 / double(m.points.size())) / (hi - lo)};
-}
+using testing::nodalError;
+using NodalError = testing::NodalError;
 
 // The nodal share of a unit pressure: a third of every triangle's area (triangle meshes only).
 std::vector<double> nodalAreas(const InterfaceMesh& m) {

@@ -9,6 +9,8 @@ design estimates say must hold whatever the model's constants:
              of elastic lines and cloth whose stiffness does not scale with the load);
   porosity   a porous canopy (300 ft^3/ft^2/min cloth, Darcy a = 4.5e6 1/m) has a lower peak and steady force
              and fills more slowly than the tight one;
+  filling    the filling distance n = v t_f / D0 the same at both speeds within 15 % (the design rule's
+             t_f = n D0 / v; the output interval is 2 ms of a t_f of 0.13-0.18 s);
   mass       the finite-mass system (the 5 kg payload free: it slows, and the dynamic pressure with it) has a
              lower peak than the infinite-mass one (payload held: constant speed).
 
@@ -184,6 +186,9 @@ def main():
          b["peak_force"] / a["peak_force"]),
         ("steady force ratio 28.28 / 20 m/s within 3 % of 2", abs(b["steady_force"] / a["steady_force"] / 2 - 1) < 0.03,
          b["steady_force"] / a["steady_force"]),
+        ("filling distance n = v t_f / D0 the same at 28.28 and 20 m/s within 15 % (t_f ~ D0 / v)",
+         abs(b["filling_distance_n"] / a["filling_distance_n"] - 1) < 0.15,
+         b["filling_distance_n"] / a["filling_distance_n"]),
         ("porous canopy: lower peak force", p["peak_force"] < a["peak_force"], p["peak_force"] / a["peak_force"]),
         ("porous canopy: lower steady force", p["steady_force"] < a["steady_force"],
          p["steady_force"] / a["steady_force"]),

@@ -423,6 +423,33 @@ TEST(RoundCanopyScene, ARunStartsAtLineStretchWithTheCutShapeAsReference) {
   }
 }
 
+// canopy_pressure's apparent_mass h: ρ h per cloth area of inertia on the cloth's nodes, no weight.
+TEST(RoundCanopyScene, ApparentMassAddsInertiaNotWeight) {
+  const std::string pressure =
+      "effects:\n  canopy_pressure: {triangles: canopy/canopy, mouth: canopy/skirt, wind: [0, 0, 10]";
+  const auto plain = fsi::structure::loadSceneFromString(
+      fsi::test::replaced(kScene, "time:", pressure + "}\ntime:"), "round.yaml");
+  const auto added = fsi::structure::loadSceneFromString(
+      fsi::test::replaced(kScene, "time:", pressure + ", apparent_mass: 0.3, density: 1.2}\ntime:"),
+      "round.yaml");
+  double m0 = 0, m1 = 0, w0 = 0, w1 = 0;
+  for (double v : plain.model->nodes.mass) m0 += v;
+  for (double v : added.model->nodes.mass) m1 += v;
+  for (double v : plain.model->nodes.physicalMass) w0 += v;
+  for (double v : added.model->nodes.physicalMass) w1 += v;
+  EXPECT_NEAR(m1 - m0, 1.2 * 0.3 * meshArea(plain.model->meshes.at(0).source), 1e-9)
+      << "ρ h S (the cut area)";
+  EXPECT_EQ(w1, w0) << "the air weighs nothing in air";
+  // A mouth of fewer than 3 nodes cannot have an area: an error at the key.
+  EXPECT_NE(
+      fsi::test::sceneError(fsi::test::replaced(kScene, "time:",
+                                                "effects:\n  canopy_pressure: {triangles: canopy/canopy, "
+                                                "mouth: canopy/confluence, wind: [0, 0, 10]}\ntime:"),
+                            "round.yaml")
+          .find("mouth"),
+      std::string::npos);
+}
+
 TEST(RoundCanopyScene, ErrorsAreLocatedAtTheKey) {
   // Out of a key's range: at the key, from the schema.
   EXPECT_NE(sceneError("gores: 12", "gores: 2").find("round.yaml:6:"), std::string::npos);

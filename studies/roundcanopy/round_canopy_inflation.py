@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The round canopy's inflation trends (docs/ROUND_CANOPY.md, "Inflation"): runs scene.yaml at line stretch
+"""The round canopy's inflation trends (docs/ROUND_CANOPY.md, "Inflation"): runs
+cases/structure/round-canopy-inflation/scene.yaml at line stretch
 under canopy_pressure for the cases below, reads each run's riser force and projected diameter histories
 (results.h5 /tables/probes; their extremes are in summary.json's probe_extremes) and checks what the classical
 design estimates say must hold whatever the model's constants:
@@ -18,7 +19,7 @@ and reports the classical comparisons: the opening-load factor C_x = F_peak / F_
 about 1.7 for a flat circular canopy) and the filling distance n = v t_f / D0 (t_f: line stretch to the
 first time the projected diameter reaches 95 % of its largest; Knacke's order 8-12 for solid cloth).
 
-  inflation.py FSI OUT [--full]       --full: the case's own mesh (12 gores) and the study's extra speeds, its
+  round_canopy_inflation.py FSI OUT [--full]       --full: the case's own mesh (12 gores) and the study's extra speeds, its
                                       results in docs/data/round_canopy_inflation.json and plots in docs/img/;
                                       without it the CI size (8 gores, 6 divisions, 0.5 s), plots in OUT.
 Exit 0: every trend holds; 1: one does not (printed).
@@ -30,8 +31,10 @@ import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+HERE = os.path.join(REPO, "cases", "structure", "round-canopy-inflation")
+sys.path.insert(0, os.path.join(REPO, "studies", "common"))
+import provenance  # noqa: E402
 D0, RHO = 2.0, 1.225
 HOLD = "constraints=[{nodes: canopy/payload, fix: all}]"
 CI = ["meshes.canopy.generator.gores=8", "meshes.canopy.generator.radial_divisions=6",
@@ -204,7 +207,8 @@ def main():
     img_dir = os.path.join(REPO, "docs", "img") if full else out
     print("plots:", plots(results, hist, img_dir, full), snapshots(dirs["infinite mass, 20 m/s"], img_dir,
                                                                     [0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.45]))
-    data = {"command": "cases/structure/round-canopy-inflation/inflation.py build/bin/fsi OUT" + (" --full" if full else ""),
+    data = {"command": "studies/roundcanopy/round_canopy_inflation.py build/bin/fsi OUT" + (" --full" if full else ""),
+            "machine": provenance.machine(), "commit": provenance.git_commit(),
             "results": results, "checks": {c[0]: {"passed": bool(c[1]), "value": c[2]} for c in checks}}
     path = os.path.join(REPO, "docs", "data", "round_canopy_inflation.json") if full else os.path.join(out, "trends.json")
     with open(path, "w") as fh:

@@ -58,7 +58,7 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
   Model model;
 
   // 1. Concatenate the points of all meshes and renumber along a Morton curve.
-  std::vector<std::array<double, 3>> pts;
+  std::vector<std::array<double, 3>> pts, start;
   std::vector<long> tags;
   std::vector<int> meshOf;
   std::vector<int> offset;
@@ -67,6 +67,7 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
     offset.push_back(int(pts.size()));
     for (std::size_t i = 0; i < md.points.size(); ++i) {
       pts.push_back(md.points[i]);
+      start.push_back(i < md.startPoints.size() ? md.startPoints[i] : md.points[i]);
       tags.push_back(i < md.pointTags.size() ? md.pointTags[i] : long(i + 1));
       meshOf.push_back(int(m));
     }
@@ -86,7 +87,9 @@ Model buildModel(std::vector<MeshInput> inputs, const MaterialTable& materials) 
     N.tag[i] = tags[o];
     N.mesh[i] = meshOf[o];
   }
-  N.x = N.X;
+  N.x.resize(3 * N.count);
+  for (int i = 0; i < N.count; ++i)
+    for (int k = 0; k < 3; ++k) N.x[3 * i + k] = start[order[i]][k];
   N.v.assign(3 * N.count, 0.0);
   N.fint.assign(3 * N.count, 0.0);
   N.fext.assign(3 * N.count, 0.0);

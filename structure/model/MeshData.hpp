@@ -21,6 +21,10 @@ struct MeshData {
   /// rigged with slack); empty, or 0 for a line: the reference distance. Only generators set them (a Gmsh
   /// file has no place for them).
   std::vector<double> lineRestLength;
+  /// Where the nodes start when they do not start at their reference coordinates (a canopy packed or pulled
+  /// out to line stretch, its stress-free shape the constructed one); empty: at `points`. Only generators set
+  /// them; a run starts there at rest, a relaxation too.
+  std::vector<std::array<double, 3>> startPoints;
   std::map<std::string, std::vector<int>> nodeGroups;      ///< named node groups (indices into points)
   std::map<std::string, std::vector<int>> triangleGroups;  ///< named triangle groups (indices into triangles)
   std::map<std::string, std::vector<int>> lineGroups;      ///< named line groups (indices into lines)

@@ -10,19 +10,21 @@ ProbeKind positionProbe();
 ProbeKind reactionProbe();
 ProbeKind volumeProbe();
 ProbeKind stressProbe();
-ProbeKind lineTensionProbe();     // LineTensionProbe.cpp
-ProbeKind reactionMomentProbe();  // ReactionMomentProbe.cpp
-ProbeKind pitchAngleProbe();      // PitchAngleProbe.cpp
-ProbeKind appliedLoadProbe();     // ReactionProbe.cpp
-ProbeKind equilibriumProbe();     // EquilibriumProbe.cpp
-ProbeKind laplaceProbe();         // LaplaceProbe.cpp
-ProbeKind foldsProbe();           // FoldsProbe.cpp
+ProbeKind lineTensionProbe();        // LineTensionProbe.cpp
+ProbeKind reactionMomentProbe();     // ReactionMomentProbe.cpp
+ProbeKind pitchAngleProbe();         // PitchAngleProbe.cpp
+ProbeKind appliedLoadProbe();        // ReactionProbe.cpp
+ProbeKind equilibriumProbe();        // EquilibriumProbe.cpp
+ProbeKind laplaceProbe();            // LaplaceProbe.cpp
+ProbeKind foldsProbe();              // FoldsProbe.cpp
+ProbeKind projectedDiameterProbe();  // ProjectedDiameterProbe.cpp
 
 const std::vector<ProbeKind>& probeKinds() {
-  static const std::vector<ProbeKind> kinds{displacementProbe(),   positionProbe(),   reactionProbe(),
-                                            volumeProbe(),         stressProbe(),     lineTensionProbe(),
-                                            reactionMomentProbe(), pitchAngleProbe(), appliedLoadProbe(),
-                                            equilibriumProbe(),    laplaceProbe(),    foldsProbe()};
+  static const std::vector<ProbeKind> kinds{displacementProbe(),     positionProbe(),   reactionProbe(),
+                                            volumeProbe(),           stressProbe(),     lineTensionProbe(),
+                                            reactionMomentProbe(),   pitchAngleProbe(), appliedLoadProbe(),
+                                            equilibriumProbe(),      laplaceProbe(),    foldsProbe(),
+                                            projectedDiameterProbe()};
   return kinds;
 }
 

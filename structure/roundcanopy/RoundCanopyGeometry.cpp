@@ -128,6 +128,8 @@ void check(const RoundCanopyParams& p) {
   if (!(p.ventDiameter >= 0)) fail("vent_diameter", fmt::format("must be >= 0 m, got {}", p.ventDiameter));
   if (!(p.lineLength > 0 && p.lineLength <= kMaxLineLength))
     fail("line_length", fmt::format("(l_s/D0) must be in (0, {}], got {}", kMaxLineLength, p.lineLength));
+  if (p.lineStretch && !(*p.lineStretch > 0 && *p.lineStretch <= 1))
+    fail("line_stretch", fmt::format("must be in (0, 1], got {}", *p.lineStretch));
   if (p.riserLength && !(*p.riserLength > 0 && *p.riserLength <= kMaxLineLength * p.nominalDiameter))
     fail("riser_length", fmt::format("must be in (0, {}] m ({} D0), got {}",
                                      kMaxLineLength * p.nominalDiameter, kMaxLineLength, *p.riserLength));
@@ -254,7 +256,13 @@ MeshData buildRoundCanopy(const RoundCanopyParams& p, const std::string& name) {
   for (const char* set : {"radials", "skirt_band", "vent_band"})
     for (int e : mesh.lineGroups[set]) mesh.lineGroups["tapes"].push_back(e);
   // Suspension lines from the radials' skirt ends to the confluence point; the riser below it.
+  const int clothNodes = int(mesh.points.size());
   const int confluence = add({0.0, 0.0, -d.confluenceDepth});
+  struct RopeNode {
+    int node, from, to;
+    double s;
+  };
+  std::vector<RopeNode> ropeNodes;  // the lines' inner nodes, for the start at line stretch
   auto rope = [&](const char* set, int from, int to) {
     const Vec3 a = mesh.points[from], b = mesh.points[to];
     int prev = from;
@@ -264,6 +272,7 @@ MeshData buildRoundCanopy(const RoundCanopyParams& p, const std::string& name) {
           e == p.lineElements
               ? to
               : add({a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])});
+      if (e < p.lineElements) ropeNodes.push_back({next, from, to, s});
       line(set, prev, next);
       prev = next;
     }
@@ -273,6 +282,33 @@ MeshData buildRoundCanopy(const RoundCanopyParams& p, const std::string& name) {
   if (p.riserLength) {
     payload = add({0.0, 0.0, -d.confluenceDepth - *p.riserLength});
     rope("riser", confluence, payload);
+  }
+  if (p.lineStretch) {
+    // The start at line stretch (RoundCanopyGeometry.hpp): each ring s times nearer the axis, the rings
+    // stacked so that the shortest meridian segment between them keeps its length, the lines straight from
+    // the confluence point.
+    const double s = *p.lineStretch, ls = d.lineLength;
+    const double lift = std::sqrt(ls * ls - s * s * radius * radius) - d.confluenceDepth;
+    std::vector<double> z(m + 1, lift);
+    for (int i = m - 1; i >= 0; --i) {
+      double dz = 1e300;
+      for (int j = 0; j < ring; ++j) {
+        const Vec3 a = mesh.points[node(i, j)], b = mesh.points[node(i + 1, j)];
+        const double h2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+        dz = std::min(dz, std::sqrt(std::max(0.0, h2 * (1.0 - s * s) + (b[2] - a[2]) * (b[2] - a[2]))));
+      }
+      z[i] = z[i + 1] + dz;
+    }
+    mesh.startPoints = mesh.points;
+    for (int i = 0; i <= m; ++i) {
+      const int end = i < m ? ringStart[i + 1] : clothNodes;
+      for (int q = ringStart[i]; q < end; ++q)
+        mesh.startPoints[q] = {s * mesh.points[q][0], s * mesh.points[q][1], z[i]};
+    }
+    for (const RopeNode& r : ropeNodes) {
+      const Vec3 a = mesh.startPoints[r.from], b = mesh.startPoints[r.to];
+      for (int k = 0; k < 3; ++k) mesh.startPoints[r.node][k] = a[k] + r.s * (b[k] - a[k]);
+    }
   }
   // Node sets.
   auto& vent = mesh.nodeGroups["vent"];

@@ -34,6 +34,16 @@
 // suspension lines), riser; nodes vent (the vent edge; without a vent the apex node), apex (the same), skirt,
 // radial_ends (the skirt ends of the radials, where the lines attach), confluence, payload (the riser's lower
 // end; without a riser the confluence point).
+//
+// Line stretch (`line_stretch` s): the canopy starts slender, as it is when the lines have just pulled taut
+// and before air enters: every cloth node starts at s times its distance from the axis (same azimuth), all
+// nodes of a ring at one height, the rings stacked from the skirt up so that the shortest of the meridian
+// segments between two rings keeps its constructed length (Δz = min over the ring of √(Δh² (1 − s²) + Δz₀²),
+// Δh and Δz₀ a segment's horizontal and vertical parts as constructed): no cloth edge and no tape is longer
+// than cut, so the start carries no stress (the longer meridians, the radial tapes among them, are slack).
+// The skirt is at the height where the lines, straight from the confluence point, have their length l_s.
+// The constructed shape stays the stress-free reference: the gores are s times narrower than cut (slack:
+// wrinkled cloth carries no hoop stress).
 
 #include <optional>
 #include <string>
@@ -63,6 +73,11 @@ struct RoundCanopyParams {
   int lineElements = 4;     ///< cables per suspension line (and per riser)
   /// Payload point this far below the confluence point [m]; unset: no riser.
   std::optional<double> riserLength;
+  /// Start at line stretch (MeshData::startPoints): the cloth gathered towards the axis, every point's
+  /// distance from it this fraction (0, 1] of the constructed one, the canopy drawn out along the axis above
+  /// the skirt without stretching any of it, the lines straight and taut to the confluence point, which
+  /// stays; unset: start at the constructed shape.
+  std::optional<double> lineStretch;
 };
 
 /// What the design is, in the designer's numbers (for logs, docs and tests).

@@ -109,6 +109,16 @@ const SchemaSection& roundCanopySchema() {
            {},
            {},
            "payload point this far below the confluence point"},
+          {"line_stretch",
+           T::Number,
+           "-",
+           "",
+           "unset: start at the constructed shape",
+           excl(0),
+           incl(1),
+           {},
+           "start at line stretch: the cloth gathered to this fraction of its distance from the axis, drawn "
+           "out along it unstretched, lines taut (the constructed shape stays the stress-free reference)"},
       }};
   return s;
 }
@@ -133,6 +143,7 @@ RoundCanopyParams readRoundCanopyParams(const YamlMap& entry) {
   q.lineLength = g.number("line_length");
   q.lineElements = int(g.integer("line_elements"));
   q.riserLength = g.optionalNumber("riser_length");
+  q.lineStretch = g.optionalNumber("line_stretch");
   g.finish();
   // A key given with a value that cannot take effect is an error.
   if (g.has("cone_angle") && q.shape != CanopyShape::conical)

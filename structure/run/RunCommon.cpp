@@ -86,6 +86,22 @@ void RunOutput::table(const std::string& name, const std::vector<std::string>& c
   frames_.writer().writeTable(name, columns, data);
 }
 
+nlohmann::json RunOutput::extremes() const {
+  if (probeRows_[0].empty()) return nullptr;
+  nlohmann::json out = nlohmann::json::object();
+  const std::vector<double>& t = probeRows_[0];
+  for (std::size_t i = 0; i < probeNames_.size(); ++i) {
+    const std::vector<double>& v = probeRows_[i + 1];
+    std::size_t hi = 0, lo = 0;
+    for (std::size_t r = 1; r < v.size(); ++r) {
+      if (v[r] > v[hi]) hi = r;
+      if (v[r] < v[lo]) lo = r;
+    }
+    out[probeNames_[i]] = {{"max", v[hi]}, {"time_of_max", t[hi]}, {"min", v[lo]}, {"time_of_min", t[lo]}};
+  }
+  return out;
+}
+
 void RunOutput::close() {
   if (!probeRows_[0].empty()) {
     std::vector<std::string> cols{"time"};
@@ -131,6 +147,7 @@ void finishRun(const Scene& scene, RunResult& result, const RunOptions& opt, nlo
   s["effects"] = scene.enabledEffects;
   s["probes"] = nlohmann::json::object();
   for (const auto& [k, v] : result.probes) s["probes"][k] = v;
+  if (!result.probeExtremes.is_null()) s["probe_extremes"] = result.probeExtremes;
   s["stats"] = std::move(stats);
   if (!opt.startFrom.is_null()) s["start_from"] = opt.startFrom;
   if (!result.diagnosis.empty()) s["diagnosis"] = result.diagnosis;

@@ -69,6 +69,10 @@ class RunOutput {
              const std::vector<std::vector<double>>& data);
   /// Writes the probes table, if a row was recorded, and closes the file.
   void close();
+  /// Over the rows recorded (the output times and the end): each probe's largest and smallest value and
+  /// the first time it took them, {NAME: {max, time_of_max, min, time_of_min}} (null without rows): a peak
+  /// force, the time to full inflation. As fine as the output interval.
+  nlohmann::json extremes() const;
 
  private:
   SceneFrames frames_;

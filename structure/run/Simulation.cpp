@@ -194,6 +194,7 @@ RunResult runSimulation(Scene& scene, const RunOptions& opt) {
                {"time", "kinetic", "strain", "external_work", "internal_work", "mass_damping",
                 "balance_error", "dt", "kinetic_product", "energy_growth", "energy_created"},
                energyRows);
+  result.probeExtremes = output.extremes();
   output.close();
 
   const EnergyLedger& E = cd.energy();

@@ -39,6 +39,7 @@ struct RunOptions {
 struct RunResult {
   StopReason reason = StopReason::EndTime;
   std::map<std::string, double> probes;
+  nlohmann::json probeExtremes;  ///< RunOutput::extremes() of an explicit run (summary.json: probe_extremes)
   nlohmann::json summary;
   std::string diagnosis;            ///< what stopped the run (unstable, interrupted, not converged)
   std::filesystem::path stateFile;  ///< last_good_state.h5 / interrupted_state.h5 when one was written

@@ -310,6 +310,70 @@ TEST(RoundCanopy, ImpossibleDesignsNameTheParameter) {
   q.goreDivisions = 100;
   q.radialDivisions = 100;
   fails(q, "radial_divisions");
+  q = p;
+  q.lineStretch = 1.5;
+  fails(q, "line_stretch");
+}
+
+// The start at line stretch against what it must be: every cloth node s times as far from the axis at its
+// azimuth; no cloth edge and no tape longer than constructed (a stress-free start), and along every ring step
+// some meridian segment exactly its constructed length (drawn out as far as the cloth allows); the lines
+// straight from the confluence point, which stays, with their length l_s; the constructed shape unchanged.
+TEST(RoundCanopy, LineStretchStartIsSlenderStressFreeAndTaut) {
+  for (CanopyShape shape : {CanopyShape::flat, CanopyShape::conical, CanopyShape::hemispherical}) {
+    RoundCanopyParams p = params(shape, 10, 0.2);
+    p.goreDivisions = 3;
+    p.bulge = shape == CanopyShape::flat ? 0.1 : 0.0;
+    p.riserLength = 0.5;
+    const double s = 0.15;
+    p.lineStretch = s;
+    const MeshData m = buildRoundCanopy(p);
+    RoundCanopyParams built = p;
+    built.lineStretch.reset();
+    const MeshData ref = buildRoundCanopy(built);
+    ASSERT_EQ(m.startPoints.size(), m.points.size());
+    EXPECT_TRUE(ref.startPoints.empty());
+    for (std::size_t i = 0; i < m.points.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(m.points[i][k], ref.points[i][k]) << "the reference is the cut shape";
+    const auto& X = m.points;
+    const auto& x = m.startPoints;
+    std::set<int> cloth;
+    for (const auto& t : m.triangles) cloth.insert(t.begin(), t.end());
+    for (int i : cloth) {
+      EXPECT_NEAR(x[i][0], s * X[i][0], 1e-12);
+      EXPECT_NEAR(x[i][1], s * X[i][1], 1e-12);
+    }
+    double longest = 0;
+    int atLength = 0;
+    for (const auto& t : m.triangles)
+      for (int e = 0; e < 3; ++e) {
+        const int a = t[e], b = t[(e + 1) % 3];
+        const double ratio = norm(sub(x[b], x[a])) / norm(sub(X[b], X[a]));
+        longest = std::max(longest, ratio);
+        atLength += ratio > 1 - 1e-12;
+      }
+    EXPECT_LE(longest, 1 + 1e-12) << "no cloth edge stretched";
+    EXPECT_GE(atLength, p.radialDivisions) << "one segment at its length per ring step at least";
+    for (int e : m.lineGroups.at("tapes"))
+      EXPECT_LE(norm(sub(x[m.lines[e][1]], x[m.lines[e][0]])),
+                norm(sub(X[m.lines[e][1]], X[m.lines[e][0]])) + 1e-12);
+    const int conf = m.nodeGroups.at("confluence").at(0), pay = m.nodeGroups.at("payload").at(0);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(x[conf][k], X[conf][k]);
+      EXPECT_EQ(x[pay][k], X[pay][k]);
+    }
+    double total = 0;
+    for (int e : m.lineGroups.at("lines")) {
+      const Vec3 d = sub(x[m.lines[e][1]], x[m.lines[e][0]]);
+      total += norm(d);
+      // Straight: every segment of a line along the same direction as the skirt end to the confluence.
+      const int end = m.lines[e - e % p.lineElements][0];
+      const Vec3 whole = sub(x[conf], x[end]);
+      EXPECT_NEAR(norm(cross(d, whole)), 0.0, 1e-10);
+    }
+    EXPECT_NEAR(total, 10 * p.lineLength * p.nominalDiameter, 1e-10) << "lines taut at l_s";
+  }
 }
 
 }  // namespace
@@ -343,6 +407,49 @@ TEST(RoundCanopyScene, TheGeneratorBuildsTheCanopyOfAScene) {
   EXPECT_EQ(scene.model->membranes.count, 576);
 }
 
+TEST(RoundCanopyScene, ARunStartsAtLineStretchWithTheCutShapeAsReference) {
+  const auto scene = fsi::structure::loadSceneFromString(
+      fsi::test::replaced(kScene, "riser_length: 0.5}", "riser_length: 0.5, line_stretch: 0.2}"),
+      "round.yaml");
+  const Model& model = *scene.model;
+  const MeshData& m = model.meshes.at(0).source;
+  ASSERT_EQ(m.startPoints.size(), m.points.size());
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const int n = model.meshes.at(0).node[i];
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(model.nodes.X[3 * n + k], m.points[i][k]) << "the reference: the constructed shape";
+      EXPECT_EQ(model.nodes.x[3 * n + k], m.startPoints[i][k]) << "the start: line stretch";
+    }
+  }
+}
+
+// canopy_pressure's apparent_mass h: ρ h per cloth area of inertia on the cloth's nodes, no weight.
+TEST(RoundCanopyScene, ApparentMassAddsInertiaNotWeight) {
+  const std::string pressure =
+      "effects:\n  canopy_pressure: {triangles: canopy/canopy, mouth: canopy/skirt, wind: [0, 0, 10]";
+  const auto plain = fsi::structure::loadSceneFromString(
+      fsi::test::replaced(kScene, "time:", pressure + "}\ntime:"), "round.yaml");
+  const auto added = fsi::structure::loadSceneFromString(
+      fsi::test::replaced(kScene, "time:", pressure + ", apparent_mass: 0.3, density: 1.2}\ntime:"),
+      "round.yaml");
+  double m0 = 0, m1 = 0, w0 = 0, w1 = 0;
+  for (double v : plain.model->nodes.mass) m0 += v;
+  for (double v : added.model->nodes.mass) m1 += v;
+  for (double v : plain.model->nodes.physicalMass) w0 += v;
+  for (double v : added.model->nodes.physicalMass) w1 += v;
+  EXPECT_NEAR(m1 - m0, 1.2 * 0.3 * meshArea(plain.model->meshes.at(0).source), 1e-9)
+      << "ρ h S (the cut area)";
+  EXPECT_EQ(w1, w0) << "the air weighs nothing in air";
+  // A mouth of fewer than 3 nodes cannot have an area: an error at the key.
+  EXPECT_NE(
+      fsi::test::sceneError(fsi::test::replaced(kScene, "time:",
+                                                "effects:\n  canopy_pressure: {triangles: canopy/canopy, "
+                                                "mouth: canopy/confluence, wind: [0, 0, 10]}\ntime:"),
+                            "round.yaml")
+          .find("mouth"),
+      std::string::npos);
+}
+
 TEST(RoundCanopyScene, ErrorsAreLocatedAtTheKey) {
   // Out of a key's range: at the key, from the schema.
   EXPECT_NE(sceneError("gores: 12", "gores: 2").find("round.yaml:6:"), std::string::npos);
@@ -355,6 +462,8 @@ TEST(RoundCanopyScene, ErrorsAreLocatedAtTheKey) {
   EXPECT_NE(vent.find("parameter 'vent_diameter'"), std::string::npos) << vent;
   // Misspelt key: did you mean.
   EXPECT_NE(sceneError("gores: 12", "gore: 12").find("gores"), std::string::npos);
+  EXPECT_NE(sceneError("riser_length: 0.5}", "riser_length: 0.5, line_stretch: 0}").find("line_stretch"),
+            std::string::npos);
 }
 
 }  // namespace

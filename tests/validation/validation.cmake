@@ -31,3 +31,11 @@ add_test(NAME validation.parafoil-row-trim
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/parafoil_row_trim.py $<TARGET_FILE:fsi>
                  ${PROJECT_BINARY_DIR}/validation/parafoil-row-trim)
 set_tests_properties(validation.parafoil-row-trim PROPERTIES TIMEOUT 600 LABELS validation)
+
+# The round canopy's opening from line stretch at CI size (studies/roundcanopy/round_canopy_inflation.py,
+# docs/ROUND_CANOPY.md "Inflation"): the peak force scales with the speed squared, falls with porosity and
+# with a finite payload mass; the filling time and the opening-load factor reported (about 20 s).
+add_test(NAME validation.round-canopy-trends
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/studies/roundcanopy/round_canopy_inflation.py
+                 $<TARGET_FILE:fsi> ${PROJECT_BINARY_DIR}/validation/round-canopy-trends)
+set_tests_properties(validation.round-canopy-trends PROPERTIES TIMEOUT 300 LABELS validation)

@@ -18,6 +18,7 @@ EffectKind lineDragEffect();           // DragEffects.cpp
 EffectKind bodyDragEffect();           // DragEffects.cpp
 EffectKind bendingEffect();            // BendingEffect.cpp
 EffectKind impactPressureEffect();     // ImpactPressureEffect.cpp
+EffectKind canopyPressureEffect();     // CanopyPressureEffect.cpp
 
 namespace {
 
@@ -26,7 +27,7 @@ std::vector<EffectKind>& table() {
   static std::vector<EffectKind> kinds{
       massDampingEffect(), stiffnessDampingEffect(), bulkViscosityEffect(),     gravityEffect(),
       pressureEffect(),    nodalForcesEffect(),      chordwisePressureEffect(), lineDragEffect(),
-      bodyDragEffect(),    bendingEffect(),          impactPressureEffect()};
+      bodyDragEffect(),    bendingEffect(),          impactPressureEffect(),    canopyPressureEffect()};
   return kinds;
 }
 

@@ -12,10 +12,11 @@ namespace fsi::structure {
 const std::vector<ProbeReader>& probeReaders() {
   // One line per probe kind, in the order of probeKinds() (ProbeRegistry.cpp).
   static const std::vector<ProbeReader> readers = [] {
-    std::vector<ProbeReader> r{displacementReader(),   positionReader(),   reactionReader(),
-                               volumeReader(),         stressReader(),     lineTensionReader(),
-                               reactionMomentReader(), pitchAngleReader(), appliedLoadReader(),
-                               equilibriumReader(),    laplaceReader(),    foldsReader()};
+    std::vector<ProbeReader> r{displacementReader(),     positionReader(),   reactionReader(),
+                               volumeReader(),           stressReader(),     lineTensionReader(),
+                               reactionMomentReader(),   pitchAngleReader(), appliedLoadReader(),
+                               equilibriumReader(),      laplaceReader(),    foldsReader(),
+                               projectedDiameterReader()};
     // What a probe computes and how a scene spells it are registered apart: one reader per kind.
     for (const ProbeKind& k : probeKinds())
       if (std::none_of(r.begin(), r.end(), [&](const ProbeReader& x) { return x.kind == k.name; }))

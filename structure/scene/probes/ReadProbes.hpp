@@ -56,5 +56,6 @@ ProbeReader stressReader();
 ProbeReader lineTensionReader();
 ProbeReader laplaceReader();
 ProbeReader foldsReader();
+ProbeReader projectedDiameterReader();
 
 }  // namespace fsi::structure

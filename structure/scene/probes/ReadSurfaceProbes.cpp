@@ -1,6 +1,9 @@
-// The scene readers of the probes on triangles and lines: volume, stress, line_tension, laplace, folds
+// The scene readers of the probes on triangles and lines: volume, projected_diameter, stress, line_tension,
+// laplace, folds
 // (what they compute: structure/probes/).
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "structure/effects/FabricBending.hpp"
 #include "structure/probes/LaplaceProbe.hpp"
@@ -13,6 +16,14 @@ namespace {
 void readVolume(const SchemaMap& p, const SetResolver& sets, ProbeSpec& spec) {
   spec.triangles = sets.triangles(p.map().required("triangles"), p.map().childPath("triangles"));
   spec.center = p.vec3("center");
+  p.finish();
+}
+
+void readProjectedDiameter(const SchemaMap& p, const SetResolver& sets, ProbeSpec& spec) {
+  spec.triangles = sets.triangles(p.map().required("triangles"), p.map().childPath("triangles"));
+  spec.direction = p.vec3("direction");
+  if (!(std::abs(spec.direction[0]) + std::abs(spec.direction[1]) + std::abs(spec.direction[2]) > 0))
+    p.map().failAt("direction", "must not be zero");
   p.finish();
 }
 
@@ -92,6 +103,16 @@ ProbeReader volumeReader() {
        selectorKey("triangles", "the closed surface's triangles"),
        {"center", KeyType::Vec3, "m", "[0, 0, 0]", "", {}, {}, {}, "the point the volume is taken about"}}};
   return {"volume", &s, readVolume};
+}
+
+ProbeReader projectedDiameterReader() {
+  static const SchemaSection s{
+      "probes.NAME (type: projected_diameter)",
+      findProbeKindDescription("projected_diameter"),
+      {probeTypeKey("projected_diameter"),
+       selectorKey("triangles", "the surface (a canopy's cloth)"),
+       {"direction", KeyType::Vec3, "", "[0, 0, 1]", "", {}, {}, {}, "the axis it is seen along"}}};
+  return {"projected_diameter", &s, readProjectedDiameter};
 }
 
 ProbeReader stressReader() {

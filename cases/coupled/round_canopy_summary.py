@@ -117,6 +117,9 @@ def main():
 
     ref = yaml.safe_load(open(os.path.join(case, "reference.yaml")))["round_canopy"]
     path = os.path.join(case, "summary.json")
+    if not os.path.exists(path):
+        print(f"round_canopy_summary.py: {path} is missing (summarize.py failed, above)", file=sys.stderr)
+        return 1
     out = json.load(open(path))
     rows = coupling_rows(case)
     if not rows:

@@ -210,7 +210,8 @@ def mesh_quality(case, spec):
     for key, pattern in (("max_non_orthogonality", "Mesh non-orthogonality Max:"),
                          ("max_skewness", "Max skewness =")):
         line = next((l for l in log.splitlines() if pattern in l), None)
-        out[key] = float(line.split(pattern)[1].split()[0]) if line else None
+        # a failed check writes '***Max skewness = 4.2, 1 highly skew faces ...': the number ends at the comma
+        out[key] = float(line.split(pattern)[1].split()[0].rstrip(",")) if line else None
     out["within"] = out["mesh_ok"] and all(
         out[k] is not None and out[k] <= spec[k] for k in ("max_non_orthogonality", "max_skewness"))
     out["limits"] = {k: spec[k] for k in ("max_non_orthogonality", "max_skewness")}

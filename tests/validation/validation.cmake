@@ -38,4 +38,4 @@ set_tests_properties(validation.parafoil-row-trim PROPERTIES TIMEOUT 600 LABELS 
 add_test(NAME validation.round-canopy-trends
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/studies/roundcanopy/round_canopy_inflation.py
                  $<TARGET_FILE:fsi> ${PROJECT_BINARY_DIR}/validation/round-canopy-trends)
-set_tests_properties(validation.round-canopy-trends PROPERTIES TIMEOUT 300 LABELS validation)
+set_tests_properties(validation.round-canopy-trends PROPERTIES TIMEOUT 300 LABELS "validation;hard")

@@ -50,7 +50,12 @@ VARIANTS = {
                            "rib spacing, against 15.9 % at a quarter): how much of the lift the bulge costs"),
     "trimmed": ({}, -1.0, "the canopy as a coupled run left it (--deformed RUN: its structure/ folder), the design's "
                           "skin moved to the run's last frame; alpha from its centre rib's chord"),
+    "trimmed_own": ({}, -1.0, "the trimmed canopy (as `trimmed`) on the structure's own facets (stl_chordwise_points "
+                              "and stl_span_divisions 0: 20 chordwise points, 2 span divisions per cell), the skin "
+                              "the coupled run's fluid mesh is snapped to"),
 }
+# variants whose fluid skin is the structure's own sampling (the coupled run's), not the finer 60 x 6
+OWN_SAMPLING = {"trimmed_own"}
 # the skin's sections the report states (y of the centre rib, the centre cell's middle, a tip cell's middle)
 STATIONS = {"centre_rib": 0.0, "centre_cell": 0.1875, "tip_cell": 1.3}
 
@@ -153,7 +158,8 @@ def shape(out, variant, env, deformed=None):
     changes, bulge, _ = VARIANTS[variant]
     (folder / "structure.yaml").write_text(structure_with((CASE / "structure.yaml").read_text(), changes,
                                                           f"{CASE}/structure.yaml"))
-    args = ["--set", "meshes.wing.generator.chordwise_points=60", "--set", "meshes.wing.generator.span_divisions=6"]
+    args = [] if variant in OWN_SAMPLING else ["--set", "meshes.wing.generator.chordwise_points=60", "--set",
+                                               "meshes.wing.generator.span_divisions=6"]
     if bulge >= 0:
         args += ["--set", f"meshes.wing.generator.bulge={bulge:g}"]
     rep = {}
@@ -199,7 +205,8 @@ def run_point(out, variant, level, alpha, iterations, env, solver="simple", cour
         run = f"solver pimple\ncourant {courant:g}\nouter_correctors 2\nsteps {steps}\n"
     (case / "polar.settings").write_text(
         SETTINGS + f"resolution {level}\nangle {alpha - incidence:.6g}   # alpha {alpha:g} deg at the centre chord\n"
-        + (f"stl_deformed {deformed}\n" if deformed else "") + f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n"
+        + (f"stl_deformed {deformed}\n" if deformed else "")
+        + ("stl_chordwise_points 0\nstl_span_divisions 0\n" if variant in OWN_SAMPLING else "") + f"stl_bulge {bulge:g}\nprism_layers {'yes' if wall == 'layers' else 'no'}\n"
         f"wall_split {2 if wall == 'split' else 0}\n" + (f"wall_layers 3\n" if wall == "layers3" else "") + run)
     t0 = time.time()
     # The environment of the build (--env); the arguments are a list, nothing here passes through a shell but
@@ -341,7 +348,8 @@ def plot(path, png):
     print(f"wing_polar: {png}")
 
 
-COLOURS = {"flat": "C0", "arc": "C1", "bulged": "C3", "bulged16": "C4", "bulged10": "C2", "trimmed": "C5"}
+COLOURS = {"flat": "C0", "arc": "C1", "bulged": "C3", "bulged16": "C4", "bulged10": "C2", "trimmed": "C5",
+           "trimmed_own": "C6"}
 
 
 def plot_layers(path, png):
@@ -353,7 +361,7 @@ def plot_layers(path, png):
 
     data = json.loads(Path(path).read_text())
     pts = [p for p in data["points"] if p.get("wall") == "layers3" and p.get("solver") == "pimple"]
-    fig, ax = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, ax = plt.subplots(1, 2, figsize=(13, 6.6))
     for v in ("arc", "bulged10", "bulged", "trimmed"):
         for lvl, fmt in (("coarse", "o:"), ("medium", "s-")):
             sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl], key=lambda p: p["alpha_deg"])
@@ -367,20 +375,35 @@ def plot_layers(path, png):
             ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=fmt, color=COLOURS[v], label=lab, capsize=3,
                            mfc="none" if lvl == "coarse" else None)
             ax[1].plot(a, [p["CD"] for p in sel], fmt, color=COLOURS[v], label=lab, mfc="none" if lvl == "coarse" else None)
+    # the trimmed shape on the main job's own wall treatment (wall functions, coarse), and the coupled main job
+    for v, mk in (("trimmed", "^"), ("trimmed_own", "v")):
+        sel = [p for p in data["points"] if p["variant"] == v and p.get("wall") == "functions" and p["level"] == "coarse"]
+        for p in sel:
+            lab = "trimmed shape, coarse skin, wall functions" + (" (structure's facets)" if v == "trimmed_own" else "")
+            ax[0].plot(p["alpha_deg"], p["CL"], mk, color=COLOURS["trimmed"], ms=8, mfc="none", label=lab)
+            ax[1].plot(p["alpha_deg"], p["CD"], mk, color=COLOURS["trimmed"], ms=8, mfc="none", label=lab)
+    polar = Path(path).parent / "ramair_polar.json"
+    if polar.exists():
+        main = [r for r in json.loads(polar.read_text())["rows"] if r["run"] == "s1-nobend"]
+        for r in main:
+            ax[0].plot(r["alpha_centre_deg"], r["CL_deformed_area"], "*", color="k", ms=12,
+                       label="the coupled main job at its trim (moved coarse mesh, wall functions)")
+            ax[1].plot(r["alpha_centre_deg"], r["CD_deformed_area"], "*", color="k", ms=12)
     ar = next((p["aspect_ratio"] for p in data["points"] if p["variant"] == "flat"), 3.0)
     al = [-2 + 0.5 * i for i in range(25)]
     a = helmbold(ar, 0.5)
-    ax[0].plot(al, [a * math.radians(x + 4.15) for x in al], "--", color="grey", lw=1,
-               label=f"Helmbold x arc factor ({a:.2f}/rad, alpha0 -4.15 deg)")
+    ax[0].plot(al, [a * math.radians(x + 3.72) for x in al], "--", color="grey", lw=1,
+               label=f"Helmbold x arc factor ({a:.2f}/rad, alpha0 -3.72 deg: rung 1's NACA 4415)")
     ax[0].set(xlabel="alpha, centre rib's chord [deg]", ylabel="CL (projected area of the skin)",
-              title="lift on the layered wall (y+ ~ 75 medium, ~ 140 coarse)")
+              title="lift: 3 prism layers (y+ ~ 75 medium, ~ 140 coarse) unless marked")
     ax[1].set(xlabel="alpha, centre rib's chord [deg]", ylabel="CD", title="drag")
     for x in ax:
         x.grid(alpha=0.3)
-    ax[0].legend(fontsize=7)
+    handles, labels = ax[0].get_legend_handles_labels()
+    fig.legend(handles, labels, fontsize=7.5, loc="lower center", ncol=3, frameon=False)
     fig.suptitle("Rung 2c: the rigid wing's lift by the shape of its cells, kOmegaSST, Re 1e6, half domain, 3 prism "
                  "layers, time-averaged over 1 s (bars: range) - studies/wing/wing_polar.py --plot-layers", fontsize=9)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.17, 1, 0.97))
     fig.savefig(png, dpi=110)
     print(f"wing_polar: {png}")
 
@@ -456,7 +479,7 @@ def main():
     for v in variants:
         if v not in VARIANTS:
             ap.error(f"--variants: unknown '{v}' (valid: {', '.join(VARIANTS)})")
-    if "trimmed" in variants and not a.deformed:
+    if any(v.startswith("trimmed") for v in variants) and not a.deformed:
         ap.error("--variants trimmed needs --deformed RUN (the coupled run's structure folder)")
     if a.deformed:
         a.deformed = str(Path(a.deformed).resolve())
@@ -480,12 +503,12 @@ def main():
                 else:
                     print(f"wing_polar: {v} {lvl} alpha {al:g} ...", flush=True)
                     case, wall = run_point(a.out, v, lvl, al, a.iterations, a.env, a.solver, a.courant,
-                                           a.flow_time, a.wall, a.deformed if v == "trimmed" else None)
+                                           a.flow_time, a.wall, a.deformed if v.startswith("trimmed") else None)
                     if case is None:
                         failed += 1
                         continue
                 row = collect(case, v, lvl, al, wall, a.solver, a.wall)
-                if v == "trimmed":
+                if v.startswith("trimmed"):
                     geo = shape(a.out, v, a.env)
                     row["shape"] = {"deformed_from": geo["deformed_from"], "incidence_deg": geo["incidence_deg"],
                                     "sections": {k: geo["skin"][k] for k in STATIONS},

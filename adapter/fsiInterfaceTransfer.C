@@ -1,5 +1,7 @@
 #include <chrono>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "coupling/interface/InterfaceIO.hpp"
 #include "coupling/mapping/L2Projection.hpp"
@@ -18,6 +20,26 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
+}
+
+// `head` + `text` as [fsi] log lines under 160 characters (the progress lines' promise, tests/adapter
+// progress): the text broken after its ", " separators, continuation lines indented.
+void infoWrapped(const std::string& head, const std::string& text) {
+  constexpr std::size_t width = 150;
+  std::string line = "[fsi] " + head;
+  std::size_t from = 0;
+  while (from < text.size()) {
+    std::size_t cut = text.size();
+    if (line.size() + (text.size() - from) > width) {
+      const std::size_t room = width > line.size() ? width - line.size() : 0;
+      const std::size_t at = text.rfind(", ", from + room);
+      cut = at != std::string::npos && at > from ? at + 1 : text.size();
+    }
+    Info << (line + text.substr(from, cut - from)).c_str() << endl;
+    from = cut;
+    while (from < text.size() && text[from] == ' ') ++from;
+    line = "[fsi]   ";
+  }
 }
 }  // namespace
 
@@ -78,19 +100,22 @@ void fsiInterfaceTransfer::setUp(const fsi::coupling::StructureParticipant& stru
     const std::vector<std::string> differ = fsi::coupling::differencesFromRunDefaults(opt);
     std::string changed;
     for (const std::string& d : differ) changed += (changed.empty() ? "" : ", ") + d;
-    Info << "[fsi] patch " << ip->name() << ": " << fsi::coupling::describe(opt).c_str() << " ("
-         << (config_.mapTolerance ? "mapTolerance given" : "tolerance from the chord gaps") << "; "
-         << (differ.empty() ? std::string("the defaults fsi map-check uses")
-                            : "not the defaults fsi map-check uses: " + changed)
-                .c_str()
-         << ")" << endl;
-    Info << "[fsi] patch " << ip->name() << ": " << r.targetNodes << " fluid points <- " << r.sourceNodes
-         << " structure nodes, " << fsi::coupling::toString(maps_.back()->mass()) << " L2 projection (level "
-         << r.quadratureLevel << (r.defectCorrection ? "+defect" : "") << "), "
-         << (r.pointwise ? "displacement pointwise, " : "") << "largest gap " << r.maxGap << " m";
+    const std::string patch = "patch " + std::string(ip->name()) + ": ";
+    infoWrapped(patch, fsi::coupling::describe(opt) + " (" +
+                           (config_.mapTolerance ? "mapTolerance given" : "tolerance from the chord gaps") +
+                           "; " +
+                           (differ.empty() ? std::string("the defaults fsi map-check uses")
+                                           : "not the defaults fsi map-check uses: " + changed) +
+                           ")");
+    std::ostringstream setup;
+    setup << r.targetNodes << " fluid points <- " << r.sourceNodes << " structure nodes, "
+          << fsi::coupling::toString(maps_.back()->mass()) << " L2 projection (level " << r.quadratureLevel
+          << (r.defectCorrection ? "+defect" : "") << "), " << (r.pointwise ? "displacement pointwise, " : "")
+          << "largest gap " << r.maxGap << " m";
     if (r.residedPoints > 0)
-      Info << ", " << r.residedPoints << " quadrature points moved to their own side of the skin";
-    Info << ", set up in " << r.setupSeconds << " s" << endl;
+      setup << ", " << r.residedPoints << " quadrature points moved to their own side of the skin";
+    setup << ", set up in " << r.setupSeconds << " s";
+    infoWrapped(patch, setup.str());
     if (config_.smoothingLength > 0) {
       smoothing_.emplace_back(
           new fsi::coupling::SurfaceSmoothing(ip->referenceMesh(), config_.smoothingLength));

@@ -17,7 +17,7 @@
 #                trim_reached (its criterion in summary.json), the centre section's angle of attack changing by
 #                less than 0.25 deg over the last fifth of the windows (check_ramair_wing.py)
 #   wing         the engineer's numbers (summary.json's wing, tests/fluid/check_ramair_wing.py): the confluence
-#                point's tensions balance the anchor's reaction, CD system = CD canopy + CD lines with the line
+#                point's cable forces (elastic + viscous) balance the anchor's reaction to 1e-9, CD system = CD canopy + CD lines with the line
 #                drag recomputed from the deformed lines, the design ribs' angle = the generator's incidence,
 #                tan(glide) = CD/CL, the wing patch's pressure + shear = the interface lift, the pitching moment
 #                = forceCoeffs' CmPitch moved to its CofR, the summary's error against the converged answer

@@ -53,7 +53,12 @@ VARIANTS = {
     "trimmed_own": ({}, -1.0, "the trimmed canopy (as `trimmed`) on the structure's own facets (stl_chordwise_points "
                               "and stl_span_divisions 0: 20 chordwise points, 2 span divisions per cell), the skin "
                               "the coupled run's fluid mesh is snapped to"),
+    "inflated16": ({"cells": 16, "rigging_angle": 6}, 0.25, "16 cells cut at a quarter of their width (the cut whose cloth is a circle "
+                                        "as wide as the cell is thick: studies/wing/canopy_design.py), inflated "
+                                        "(--deformed RUN: the design study's c16_b25 run, rigged at 6 deg as it), alpha from its centre rib"),
 }
+# variants whose skin is a run's last frame (--deformed)
+DEFORMED = {"trimmed", "trimmed_own", "inflated16"}
 # variants whose fluid skin is the structure's own sampling (the coupled run's), not the finer 60 x 6
 OWN_SAMPLING = {"trimmed_own"}
 # the skin's sections the report states (y of the centre rib, the centre cell's middle, a tip cell's middle)
@@ -479,8 +484,8 @@ def main():
     for v in variants:
         if v not in VARIANTS:
             ap.error(f"--variants: unknown '{v}' (valid: {', '.join(VARIANTS)})")
-    if any(v.startswith("trimmed") for v in variants) and not a.deformed:
-        ap.error("--variants trimmed needs --deformed RUN (the coupled run's structure folder)")
+    if any(v in DEFORMED for v in variants) and not a.deformed:
+        ap.error(f"--variants {', '.join(sorted(DEFORMED))} need --deformed RUN (the structure run's folder)")
     if a.deformed:
         a.deformed = str(Path(a.deformed).resolve())
     levels = a.levels.split(",")
@@ -503,12 +508,12 @@ def main():
                 else:
                     print(f"wing_polar: {v} {lvl} alpha {al:g} ...", flush=True)
                     case, wall = run_point(a.out, v, lvl, al, a.iterations, a.env, a.solver, a.courant,
-                                           a.flow_time, a.wall, a.deformed if v.startswith("trimmed") else None)
+                                           a.flow_time, a.wall, a.deformed if v in DEFORMED else None)
                     if case is None:
                         failed += 1
                         continue
                 row = collect(case, v, lvl, al, wall, a.solver, a.wall)
-                if v.startswith("trimmed"):
+                if v in DEFORMED:
                     geo = shape(a.out, v, a.env)
                     row["shape"] = {"deformed_from": geo["deformed_from"], "incidence_deg": geo["incidence_deg"],
                                     "sections": {k: geo["skin"][k] for k in STATIONS},

@@ -3,6 +3,7 @@
 #include "fsiInterfacePatch.H"
 #include "globalIndex.H"
 #include "globalMeshData.H"
+#include "points0MotionSolver.H"
 
 namespace Foam {
 
@@ -15,13 +16,19 @@ fsiInterfacePatch::fsiInterfacePatch(const fvMesh& mesh, label patchID,
       mesh.globalData().mergePoints(pp.meshPoints(), pp.meshPointMap(), pointToGlobal_, uniqueMeshPoints);
   nGlobal_ = numbering->size();
 
-  // Reference coordinates of the points this rank owns, and its faces in global numbering.
+  // Reference coordinates of the points this rank owns, and its faces in global numbering. The reference is
+  // the motion solver's own points0 (x = points0 + displacement) when there is one: x - u of a restart's
+  // moved mesh differs from it by round-off, which changed a restarted implicit run's iteration counts
+  // (docs/ROBUSTNESS.md); on a fresh start both are the same points.
   const pointField& x = mesh.points();
   const vectorField& u = pointDisplacement.primitiveField();
+  const HashTable<const points0MotionSolver*> solvers = mesh.lookupClass<points0MotionSolver>();
+  const pointField* points0 = solvers.size() == 1 ? &(*solvers.cbegin())->points0() : nullptr;
+  if (points0 && points0->size() != x.size()) points0 = nullptr;
   List<pointField> ownedPoints(Pstream::nProcs());
   ownedPoints[Pstream::myProcNo()].setSize(uniqueMeshPoints.size());
   forAll(uniqueMeshPoints, i) ownedPoints[Pstream::myProcNo()][i] =
-      x[uniqueMeshPoints[i]] - u[uniqueMeshPoints[i]];
+      points0 ? (*points0)[uniqueMeshPoints[i]] : x[uniqueMeshPoints[i]] - u[uniqueMeshPoints[i]];
   List<faceList> faces(Pstream::nProcs());
   faceList& mine = faces[Pstream::myProcNo()];
   mine = pp.localFaces();

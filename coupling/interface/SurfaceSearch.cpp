@@ -276,6 +276,48 @@ SurfacePoint SurfaceSearch::closest(const std::array<double, 3>& x, int hint) co
   return search(x, hint, [](int) { return true; });
 }
 
+std::vector<SurfacePoint> SurfaceSearch::equallyClose(const std::array<double, 3>& x,
+                                                      const SurfacePoint& best) const {
+  std::vector<SurfacePoint> out{best};
+  if (best.triangle < 0) return out;
+  // Round-off of a distance computed on two mirror-image triangles, relative to the surface's size.
+  const Vec3 diag = sub(nodes_[0].hi.data(), nodes_[0].lo.data());
+  const double tiny2 = 1e-24 * dot(diag, diag);
+  const double bound2 = best.distance * best.distance * (1.0 + 1e-9) + tiny2;
+  std::vector<int> stack{0};
+  std::array<double, 3> bary;
+  while (!stack.empty()) {
+    const BoxNode& n = nodes_[std::size_t(stack.back())];
+    stack.pop_back();
+    if (boxDistance2(n.lo, n.hi, x) > bound2) continue;
+    if (n.count == 0) {
+      stack.push_back(n.first);
+      stack.push_back(n.first + 1);
+      continue;
+    }
+    for (int s = n.first; s < n.first + n.count; ++s) {
+      const double d2 = distance2(s, x, bary);
+      if (d2 > bound2) continue;
+      const int t = order_[std::size_t(s)];
+      const std::array<double, 3> at = fan_.position(t, bary);
+      const bool seen = std::any_of(out.begin(), out.end(), [&](const SurfacePoint& q) {
+        const Vec3 d = sub(q.point.data(), at.data());
+        return dot(d, d) <= tiny2;
+      });
+      if (seen) continue;
+      SurfacePoint p;
+      p.triangle = t;
+      p.face = fan_.triangleFace[std::size_t(t)];
+      p.bary = bary;
+      p.point = at;
+      p.distance = std::sqrt(d2);
+      p.mapped = p.distance <= tolerance_;
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
 std::array<double, 3> SurfaceSearch::normal(int t) const {
   return slotNormal(slotOf_[std::size_t(t)]);
 }

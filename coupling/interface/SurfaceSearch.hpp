@@ -87,6 +87,11 @@ class SurfaceSearch {
   /// same skin). When no triangle faces that way, face = triangle = -1, distance = ∞ and mapped = false.
   SurfacePoint closestFacing(const std::array<double, 3>& x, const std::array<double, 3>& facing,
                              int hint = -1) const;
+  /// Every closest point of x that is as close as `best` (closest(x)'s result) to round-off, one per distinct
+  /// position: more than one where x lies on a symmetry plane of the surface, e.g. above a valley whose two
+  /// flanks mirror each other, and `best` alone would take one side. Positions closer than round-off to each
+  /// other (x over a shared edge or corner) count once. Always holds `best` first.
+  std::vector<SurfacePoint> equallyClose(const std::array<double, 3>& x, const SurfacePoint& best) const;
   /// The (unnormalised, area-weighted) normal of fan triangle t, by its corner order.
   std::array<double, 3> normal(int t) const;
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <vector>
 
 namespace fsi::coupling {
 
@@ -20,7 +21,13 @@ PointwiseEvaluation::PointwiseEvaluation(const SurfaceSearch& search, const Inte
       continue;
     }
     maxGap_ = std::max(maxGap_, p.distance);
-    search.fan().forEachWeight(p.triangle, p.bary, [&](int j, double w) { entries.emplace_back(i, j, w); });
+    // A node equally close to several points of the surface (on a symmetry plane over a valley or a ridge)
+    // takes their mean: the first one found would break the symmetry (docs/PROJECTION.md, "Ties").
+    const std::vector<SurfacePoint> ties = search.equallyClose(target.points[std::size_t(i)], p);
+    const double share = 1.0 / double(ties.size());
+    for (const SurfacePoint& q : ties)
+      search.fan().forEachWeight(q.triangle, q.bary,
+                                 [&](int j, double w) { entries.emplace_back(i, j, share * w); });
   }
   e_.resize(nt, ns);
   e_.setFromTriplets(entries.begin(), entries.end());  // sums a node reached twice (corner and centre)

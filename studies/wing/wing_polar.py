@@ -354,7 +354,7 @@ def plot(path, png):
 
 
 COLOURS = {"flat": "C0", "arc": "C1", "bulged": "C3", "bulged16": "C4", "bulged10": "C2", "trimmed": "C5",
-           "trimmed_own": "C6"}
+           "trimmed_own": "C6", "inflated16": "C9"}
 
 
 def plot_layers(path, png):
@@ -367,7 +367,7 @@ def plot_layers(path, png):
     data = json.loads(Path(path).read_text())
     pts = [p for p in data["points"] if p.get("wall") == "layers3" and p.get("solver") == "pimple"]
     fig, ax = plt.subplots(1, 2, figsize=(13, 6.6))
-    for v in ("arc", "bulged10", "bulged", "trimmed"):
+    for v in ("arc", "bulged10", "bulged", "trimmed", "inflated16"):
         for lvl, fmt in (("coarse", "o:"), ("medium", "s-")):
             sel = sorted([p for p in pts if p["variant"] == v and p["level"] == lvl], key=lambda p: p["alpha_deg"])
             if not sel:
@@ -376,7 +376,8 @@ def plot_layers(path, png):
             lo = [p["CL"] - p.get("CL_min_last_fifth", p["CL"]) for p in sel]
             hi = [p.get("CL_max_last_fifth", p["CL"]) - p["CL"] for p in sel]
             lab = {"arc": "flat panels", "bulged10": "cut bulge 0.10", "bulged": "cut bulge 0.25 (the case's design)",
-                   "trimmed": "the coupled canopy's trimmed shape"}[v] + f", {lvl} skin"
+                   "trimmed": "the coupled canopy's trimmed shape",
+                   "inflated16": "16 cells cut 0.25, inflated (canopy design study)"}[v] + f", {lvl} skin"
             ax[0].errorbar(a, [p["CL"] for p in sel], yerr=[lo, hi], fmt=fmt, color=COLOURS[v], label=lab, capsize=3,
                            mfc="none" if lvl == "coarse" else None)
             ax[1].plot(a, [p["CD"] for p in sel], fmt, color=COLOURS[v], label=lab, mfc="none" if lvl == "coarse" else None)
@@ -406,7 +407,7 @@ def plot_layers(path, png):
         x.grid(alpha=0.3)
     handles, labels = ax[0].get_legend_handles_labels()
     fig.legend(handles, labels, fontsize=7.5, loc="lower center", ncol=3, frameon=False)
-    fig.suptitle("Rung 2c: the rigid wing's lift by the shape of its cells, kOmegaSST, Re 1e6, half domain, 3 prism "
+    fig.suptitle("Rung 2c and the canopy design: the rigid wing's lift by the shape of its cells, kOmegaSST, Re 1e6, half domain, 3 prism "
                  "layers, time-averaged over 1 s (bars: range) - studies/wing/wing_polar.py --plot-layers", fontsize=9)
     fig.tight_layout(rect=(0, 0.17, 1, 0.97))
     fig.savefig(png, dpi=110)

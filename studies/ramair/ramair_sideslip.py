@@ -13,6 +13,7 @@ stored in the JSON at once, so a cut-off study keeps what it did.
 
   /usr/bin/python3 studies/ramair/ramair_sideslip.py --deformed RUN/structure [--sideslip=5,-5,0] [--out DIR]
       [--json docs/data/ramair_sideslip.json] [--env build/share/fsi/fsi-env.sh] [--collect]
+  /usr/bin/python3 studies/ramair/ramair_sideslip.py --deformed RUN/structure --plot docs/img/ramair_sideslip.png
 
 The JSON holds per point the forces function object's total force and moment about CofR (the case's axes: x
 downstream, y right, z up), averaged over the second half of the steps, their range over that half, CL and CD,
@@ -109,6 +110,40 @@ def store(path, rows, meta):
     Path(path).write_text(json.dumps(data, indent=1) + "\n")
 
 
+def plot(out, png):
+    """The side force, roll and yaw about CofR against time for every finished point (the averaged half shaded)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+    keys = ("side_force_N", "roll_moment_Nm", "yaw_moment_Nm")
+    late = {k: [] for k in keys}
+    for case in sorted(Path(out).glob("b*/summary.json")):
+        lat = json.loads(case.read_text()).get("lateral")
+        if not lat:
+            continue
+        h = lat["history"]
+        for ax, key in zip(axes, keys):
+            ax.plot(h["time"], h[key], label=f"sideslip {case.parent.name[1:]} deg")
+            late[key] += h[key][len(h[key]) // 4:]
+    for ax, key in zip(axes, keys):  # the start's impulse off the scale
+        if late[key]:
+            lo, hi = min(late[key]), max(late[key])
+            ax.set_ylim(lo - 0.3 * (hi - lo) - 1e-3, hi + 0.3 * (hi - lo) + 1e-3)
+    t_end = max(ax.get_xlim()[1] for ax in axes)
+    for ax, label in zip(axes, ("side force [N] (+: right)", "roll about CofR [N m] (+: right wing down)",
+                                "yaw about CofR [N m] (+: nose right)")):
+        ax.set_ylabel(label, fontsize=8)
+        ax.axvspan(0.5 * t_end, t_end, color="0.9")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    axes[-1].set_xlabel("time [s] (shaded: the half averaged)")
+    fig.suptitle("the main job's trimmed canopy, rigid, in sideslip (coarse mesh, wall functions)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    print("wrote", png)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--deformed", required=True, help="the main job's structure run (its structure/ folder)")
@@ -117,7 +152,12 @@ def main():
     ap.add_argument("--json", default=str(ROOT / "docs/data/ramair_sideslip.json"))
     ap.add_argument("--env", default=str(ROOT / "build/share/fsi/fsi-env.sh"))
     ap.add_argument("--collect", action="store_true", help="only collect the finished points")
+    ap.add_argument("--plot", default=None, help="only draw the histories of the finished points to this PNG "
+                                                 "(docs/img/ramair_sideslip.png)")
     a = ap.parse_args()
+    if a.plot:
+        plot(a.out, a.plot)
+        return
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     source = out / "shape" / "source" / "results.h5"

@@ -48,11 +48,10 @@ stl_bulge -1
 solver pimple
 courant 2
 outer_correctors 2
-steps 480          # 2 s of flow; the forces averaged over the second half
 """
 
 
-def run_point(out, beta, source, env):
+def run_point(out, beta, source, env, steps):
     case = Path(out) / f"b{beta:+g}"
     if (case / "summary.json").exists():
         return case, 0.0
@@ -62,7 +61,8 @@ def run_point(out, beta, source, env):
     for f in tracked_case_files():
         (case / f.name).write_bytes(f.read_bytes())
         os.chmod(case / f.name, f.stat().st_mode)
-    (case / "sideslip.settings").write_text(SETTINGS + f"stl_deformed {source}\nsideslip {beta:g}\n")
+    (case / "sideslip.settings").write_text(SETTINGS + f"steps {steps}   # the forces averaged over the "
+                                            f"second half\nstl_deformed {source}\nsideslip {beta:g}\n")
     t0 = time.time()
     cmd = ["bash", "-c", '. "$0" && exec nice -n 10 ./Allrun -settings sideslip.settings', str(env)]
     with open(Path(out) / f"b{beta:+g}.log", "w") as log:
@@ -151,6 +151,7 @@ def main():
     ap.add_argument("--out", default=str(ROOT / "studies-out/sideslip"))
     ap.add_argument("--json", default=str(ROOT / "docs/data/ramair_sideslip.json"))
     ap.add_argument("--env", default=str(ROOT / "build/share/fsi/fsi-env.sh"))
+    ap.add_argument("--steps", type=int, default=480, help="time steps of each run (480: 2 s of flow)")
     ap.add_argument("--collect", action="store_true", help="only collect the finished points")
     ap.add_argument("--plot", default=None, help="only draw the histories of the finished points to this PNG "
                                                  "(docs/img/ramair_sideslip.png)")
@@ -165,13 +166,13 @@ def main():
         _, moved = symmetric_source(a.deformed, out / "shape")
         print(f"ramair_sideslip: the trimmed skin made symmetric (largest change {moved:.2e} m)")
     meta = {"command": "/usr/bin/python3 studies/ramair/ramair_sideslip.py --deformed RUN/structure "
-                       f"--sideslip={a.sideslip}",
+                       f"--sideslip={a.sideslip}" + (f" --steps {a.steps}" if a.steps != 480 else ""),
             "deformed_from": str(Path(a.deformed).resolve()),
-            "settings": SETTINGS + "stl_deformed <the symmetrised last frame>\nsideslip <the point's>\n",
+            "settings": SETTINGS + f"steps {a.steps}\nstl_deformed <the symmetrised last frame>\nsideslip <the point's>\n",
             "machine": f"{platform.node()}, {os.cpu_count()} cores (shared), {platform.machine()}",
             "date": datetime.date.today().isoformat()}
     for beta in [float(b) for b in a.sideslip.split(",")]:
-        case, wall = (Path(a.out) / f"b{beta:+g}", 0.0) if a.collect else run_point(a.out, beta, source.resolve(), a.env)
+        case, wall = (Path(a.out) / f"b{beta:+g}", 0.0) if a.collect else run_point(a.out, beta, source.resolve(), a.env, a.steps)
         if case is None or not (case / "summary.json").exists():
             continue
         row = collect(case, beta, wall, source)

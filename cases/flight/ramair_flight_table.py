@@ -34,6 +34,7 @@ How (docs/FLIGHT.md, "The coupled ram-air wing in flight"):
   derivatives (strip theory, Helmbold's lift slope; the profile drag's yaw damping), the canopy's mass and
   inertias.
 Usage: ramair_flight_table.py [--check]   (--check: exit 1 when the committed files differ from what it writes)
+       ramair_flight_table.py --sideslip FILE   (the derivatives and the brake's turn from another sideslip JSON)
 """
 import json
 import math
@@ -406,6 +407,20 @@ time: {{end: 300, step: 0.01, output_interval: 0.1}}
 
 
 def main():
+    if "--sideslip" in sys.argv[1:]:
+        # the sideslip derivatives another set of sideslip runs gives (a check; nothing written)
+        path = sys.argv[sys.argv.index("--sideslip") + 1]
+        with open(path) as f:
+            data = json.load(f)
+        global load
+        committed = load
+        load = lambda name: data if name == "ramair_sideslip.json" else committed(name)  # noqa: E731
+        table, _ = build()
+        s = table["sideslip"]
+        print(f"{path}: CY_beta {s['CY_beta']:+.4f}, Cl_beta {s['Cl_beta']:+.4f}, Cn_beta {s['Cn_beta']:+.4f} per rad "
+              f"(symmetric part of the pair: {s['symmetric_part']}); the held mean's right brake: "
+              f"{table['brake']['mean']['turn_rate_rad_s']:+.4f} rad/s")
+        return
     table, system = build()
     outputs = {os.path.join(CASE, "flight_table.json"): json.dumps(table, indent=1) + "\n",
                os.path.join(CASE, "ramair-kt.flight.yaml"): flight_yaml(table, system)}

@@ -210,9 +210,11 @@ def write_case(settings_path, stl_path, case):
     # one chord around, along the flow).
     near_lo = [lo[0] - 0.5 * c, lo[1] - 0.5 * c, lo[2] - 0.5 * c]
     near_hi = [hi[0] + 1.5 * c, hi[1] + 0.5 * c, hi[2] + 0.5 * c]
+    # along the flow: it drifts sideways with sideslip (the air from the right: the wake to the left, -y)
     wake_dz = 7 * c * math.tan(a)
-    wake_lo = [lo[0] - c, lo[1] - c, lo[2] - c + min(0.0, wake_dz)]
-    wake_hi = [hi[0] + 7 * c, hi[1] + c, hi[2] + c + max(0.0, wake_dz)]
+    wake_dy = -7 * c * math.tan(math.radians(s["sideslip"]))
+    wake_lo = [lo[0] - c, lo[1] - c + min(0.0, wake_dy), lo[2] - c + min(0.0, wake_dz)]
+    wake_hi = [hi[0] + 7 * c, hi[1] + c + max(0.0, wake_dy), hi[2] + c + max(0.0, wake_dz)]
     # A point of the fluid: upstream of the wing, off every plane of background cell faces.
     inside = [lo[0] - 2.0 * c + 0.1137 * d["h0"], 0.0733 * d["h0"], 0.5 * (lo[2] + hi[2]) + 0.1791 * d["h0"]]
     if not all(bmin[i] < inside[i] < bmax[i] for i in range(3)) or lo[0] <= inside[0] <= hi[0]:
@@ -491,7 +493,8 @@ writeCompression off; timeFormat general; timePrecision {precision}; runTimeModi
               "locationInMesh": inside, "refinement": res}
     with open(os.path.join(cons, "fluidSettings.json"), "w") as f:
         json.dump(record, f, indent=1)
-    print(f"ramair_fluid: {s['model']} at {s['speed']:g} m/s, inflow angle {s['angle']:g} deg (wing incidence "
+    slip = f", sideslip {s['sideslip']:g} deg" if s["sideslip"] else ""
+    print(f"ramair_fluid: {s['model']} at {s['speed']:g} m/s, inflow angle {s['angle']:g} deg{slip} (wing incidence "
           f"{geo['incidence_deg']:.3g} deg), Re {d['Re']:.4g}; {s['resolution']} mesh, background {n[0]}x{n[1]}x{n[2]}; "
           f"deltaT {d['deltaT']:.4g} s x {s['steps']} steps; Aref {d['Aref']:.4g} m^2, AR {d['aspect_ratio']:.3g}")
 

@@ -70,6 +70,14 @@ def derived(s, geo):
     a = math.radians(s["angle"])
     flow = (math.cos(a), 0.0, math.sin(a))
     lift = (-math.sin(a), 0.0, math.cos(a))
+    if s.get("sideslip", 0.0) != 0:
+        # sideslip b: the stream turned about z by -b (the air from the right for b > 0); the lift normal to the
+        # stream and to the span (y), as the flight model's wind axes have it (flight/FlightSystem.cpp); at b = 0
+        # the lines above (kept apart so that the dictionaries stay byte for byte those without sideslip)
+        b = math.radians(s["sideslip"])
+        flow = (math.cos(a) * math.cos(b), -math.cos(a) * math.sin(b), math.sin(a))
+        n = math.hypot(flow[2], flow[0])
+        lift = (0.0 - flow[2] / n, 0.0, flow[0] / n)  # 0.0 - : no "-0" at angle 0
     res = RESOLUTIONS[s["resolution"]]
     c = geo["chord"]
     h0 = c  # background cell: one chord

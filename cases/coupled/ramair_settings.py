@@ -34,6 +34,10 @@ DIFFUSIVITY = {"quadratic": "quadratic inverseDistance (wing)", "inverse": "inve
 SETTINGS = {
     "speed": ("float", None, 1e-3, 1e3, "free-stream speed [m/s]"),
     "angle": ("float", 0.0, -30.0, 30.0, "inflow angle in the x-z plane [deg], added to the wing's incidence"),
+    "sideslip": ("float", 0.0, -30.0, 30.0,
+                 "rigid wing, whole domain: the free stream (at `angle`) turned by this angle about the vertical z "
+                 "axis [deg]; positive: the air comes from the right (+y), U = speed (cos a cos b, -cos a sin b, sin a), "
+                 "the flight model's sideslip asin(cos a sin b) (docs/RAMAIR.md \"Sideslip\")"),
     "nu": ("float", 1.5e-5, 1e-7, 10.0, "kinematic viscosity [m^2/s]"),
     "rho": ("float", 1.225, 1e-3, 1e4, "density for forces [kg/m^3] (p is kinematic)"),
     "model": (["laminar", "kOmegaSST"], "laminar", None, None,
@@ -316,6 +320,16 @@ def read_settings(path):
     if values["half_domain"] == "yes" and values["mirror_mesh"] == "yes":
         raise InputError(f"{path}:{where['half_domain']}: half_domain and mirror_mesh exclude each other (mirror_mesh "
                          "meshes the half and mirrors it; half_domain keeps the half with a symmetry plane)")
+    if values["sideslip"] != 0:
+        # A sideslipping wing's flow is not mirror-symmetric, and the coupled canopy's attitude is its own.
+        for key, why in (("coupled", "sideslip is for the rigid wing (the coupled canopy's rig and its lines' wind take the "
+                                     "stream in the x-z plane)"),
+                         ("half_domain", "the half domain's symmetry plane assumes a symmetric flow"),
+                         ("mirror_mesh", "the flow about a sideslipping wing is not mirror-symmetric: mesh the "
+                                         "whole box")):
+            if values[key] == "yes":
+                raise InputError(f"{path}:{where['sideslip']}: sideslip {values['sideslip']:g} with {key} yes "
+                                 f"(line {where[key]}): {why}")
     if values["coupled"] == "yes":
         for key in ("solver", "half_domain", "prism_layers"):
             if key in where and values[key] != SETTINGS[key][1]:

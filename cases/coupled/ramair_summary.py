@@ -9,7 +9,7 @@ import os
 import re
 import sys
 
-from ramair_geometry import _norm, v3
+from ramair_geometry import _cross, _norm, v3
 from ramair_mesh import check_mesh, patch_area
 from ramair_settings import NUMBER, InputError, brake_travel, brake_window, load_record, read_settings
 
@@ -50,6 +50,62 @@ def read_force_coeffs(case):
             raise InputError(f"{path}: columns {h} differ from those of {first}")
         rows = [row for row in rows if row[0] <= t0 * (1 + 1e-9)] + r
     return header, rows, first
+
+
+def read_vector_table(path):
+    """A forces function object's force.dat or moment.dat: rows of time and the total vector."""
+    rows = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                continue
+            w = line.replace("(", " ").replace(")", " ").split()
+            if len(w) >= 4:
+                rows.append([float(x) for x in w[:4]])
+    return rows
+
+
+def lateral(case, d):
+    """The rigid wing's side force and its roll and yaw moments (postProcessing/forces: the total force and its
+    moment about CofR, the case's axes), averaged over the second half of the steps (a time-accurate run's
+    settled part; docs/RAMAIR.md "Sideslip"). None when the forces function object wrote nothing."""
+    base = os.path.join(case, "postProcessing", "forces", "0")
+    if not all(os.path.exists(os.path.join(base, n)) for n in ("force.dat", "moment.dat")):
+        return None
+    fr, mr = read_vector_table(os.path.join(base, "force.dat")), read_vector_table(os.path.join(base, "moment.dat"))
+    n = min(len(fr), len(mr))
+    if n < 2:
+        return None
+    tail = range(n - n // 2, n)
+
+    def mean(rows, i):
+        return sum(rows[k][i] for k in tail) / len(tail)
+
+    force, moment = [mean(fr, i) for i in (1, 2, 3)], [mean(mr, i) for i in (1, 2, 3)]
+    flow = d["flow_dir"]
+    # the flight model's wind axes (flight/FlightSystem.cpp): the wing moves along -flow; lift normal to that and
+    # to the span (y), side = motion x lift (to the right at zero sideslip)
+    motion = [-v for v in flow]
+    up = _cross((0.0, 1.0, 0.0), motion)
+    up = [v / _norm(up) for v in up]
+    side = _cross(motion, up)
+    qS, b = d["q"] * d["Aref"], d["span_projected"]
+
+    def series(rows, vec):
+        return [sum(r[1 + i] * vec[i] for i in range(3)) for r in rows[:n]]
+
+    side_n = sum(force[i] * side[i] for i in range(3))
+    roll, yaw = -moment[0], -moment[2]
+    return {"axes": "x forward (-x of the case), y right (+y), z down (-z); moments about CofR; positive roll: right "
+                    "wing down, positive yaw: nose to the right (the flight model's body axes at zero angle of attack)",
+            "side_direction": side, "side_is": "the flight model's: motion x lift, lift normal to the motion and to y",
+            "averaged_over": f"the last {len(tail)} of {n} steps", "CofR": d["CofR"],
+            "force_N": force, "moment_Nm": moment, "force_moment_axes": "the case's (x downstream, y right, z up)",
+            "side_force_N": side_n, "roll_moment_Nm": roll, "yaw_moment_Nm": yaw,
+            "CY": side_n / qS, "Cl_roll": roll / (qS * b), "Cn_yaw": yaw / (qS * b),
+            "coefficients_is": "CY on q Aref, Cl_roll and Cn_yaw on q Aref b (b: the projected span)",
+            "history": {"time": [r[0] for r in fr[:n]], "side_force_N": series(fr, side),
+                        "roll_moment_Nm": [-r[1] for r in mr[:n]], "yaw_moment_Nm": [-r[3] for r in mr[:n]]}}
 
 
 def remeshes(case):
@@ -117,6 +173,10 @@ def summary(case):
                 if len(times) > 2:
                     out["flow"]["wall_s_per_step"] = (times[-1] - times[0]) / (len(times) - 1)
                     out["flow"]["wall_s"] = times[-1]
+    if s.get("coupled") != "yes":
+        lat = lateral(case, d)
+        if lat:
+            out["lateral"] = lat
     if s.get("coupled") == "yes":
         out["coupled"] = coupled_summary(case, d)
         if os.path.exists(os.path.join(case, "log.checkMesh.final")):

@@ -30,9 +30,9 @@ namespace fsi::structure {
 struct BendingHinges {
   static constexpr int kNeighbours = 4;  ///< entries of a hinge's row of K besides its own
   int count = 0;                         ///< hinges
-  int padded = 0;                        ///< count rounded up to whole batches (the arrays' length)
-  std::vector<int> nodes;                ///< 4 × padded: vertex k of hinge h at [k padded + h]
-  std::vector<double> theta0;            ///< reference angle
+  int padded = 0;  ///< count + 1 rounded up to whole batches (the arrays' length; lane `count` is padding)
+  std::vector<int> nodes;         ///< 4 × padded: vertex k of hinge h at [k padded + h]
+  std::vector<double> theta0;     ///< reference angle
   std::vector<double> stiffness;  ///< k_h = Σ over its triangles of D A_T Σ_r W_r B_r,e²: step bound
   std::vector<double> selfCoef;   ///< K_hh
   std::vector<double> coef;       ///< kNeighbours × padded: K_hj of the neighbours (0 where none)
@@ -40,11 +40,12 @@ struct BendingHinges {
 
   /// The triangles with at least one hinge, in the order of the lowest of their hinges.
   int triangles = 0;
-  int triPadded = 0;            ///< the arrays' length: triangles plus a batch of padding
-  std::vector<int> triNodes;    ///< 3 × triPadded: vertex k of triangle t at [k triPadded + t]
-  std::vector<int> triHinge;    ///< 3 × triPadded: the hinge of edge k (vertices k, k + 1); 0 where none
-  std::vector<double> triSign;  ///< 3 × triPadded: ±1, the hinge's gradient on that side along the
-                                ///< triangle's normal (v1 − v0) × (v2 − v0); 0 where no hinge
+  int triPadded = 0;          ///< the arrays' length: triangles plus a batch of padding
+  std::vector<int> triNodes;  ///< 3 × triPadded: vertex k of triangle t at [k triPadded + t]
+  /// 3 × triPadded: the hinge h of edge k (vertices k, k + 1) where its angle's gradient on this side is
+  /// along the triangle's normal (v1 − v0) × (v2 − v0), ~h where against it; `count` (a padded lane: no
+  /// moment) where the edge has no hinge.
+  std::vector<int> triHinge;
   std::vector<int> batchFirstTriangle;  ///< padded / width + 1: the first triangle of each hinge batch
 
   /// Doubles of working memory an evaluation needs (Δθ, the scaled moments, a bound and an energy per batch).

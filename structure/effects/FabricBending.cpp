@@ -267,7 +267,7 @@ void FabricBending::layOutHinges() {
   BendingHinges& B = batched_;
   constexpr int kN = BendingHinges::kNeighbours;
   B.count = int(H);
-  B.padded = (B.count + kLaneWidth - 1) / kLaneWidth * kLaneWidth;
+  B.padded = (B.count + kLaneWidth) / kLaneWidth * kLaneWidth;  // at least one padded lane
   const std::size_t P = std::size_t(B.padded);
   B.nodes.assign(4 * P, 0);
   B.theta0.assign(P, 0.0);
@@ -335,16 +335,15 @@ void FabricBending::layOutTriangles(const std::vector<int>& conn) {
   B.triPadded = B.triangles + kLaneWidth;
   const std::size_t T = std::size_t(B.triPadded);
   B.triNodes.assign(3 * T, 0);
-  B.triHinge.assign(3 * T, 0);
-  B.triSign.assign(3 * T, 0.0);
+  B.triHinge.assign(3 * T, B.count);
   const int batches = B.padded / kLaneWidth;
   B.batchFirstTriangle.assign(std::size_t(batches) + 1, B.triangles);
   for (std::size_t i = order.size(); i-- > 0;) {
     const std::size_t t = std::size_t(order[i].second);
     for (std::size_t k = 0; k < 3; ++k) {
       B.triNodes[k * T + i] = conn[3 * t + k];
-      B.triHinge[k * T + i] = std::max(0, hinge[t][k]);
-      B.triSign[k * T + i] = sign[t][k];
+      const int h = hinge[t][k];
+      B.triHinge[k * T + i] = h < 0 ? B.count : sign[t][k] > 0 ? h : ~h;
     }
     B.batchFirstTriangle[std::size_t(order[i].first / kLaneWidth)] = int(i);
   }

@@ -176,23 +176,28 @@ void bendingMoments(const BendingHinges& H, double* scratch, bool wantEnergy, in
     if (wantEnergy) s.energy[at / kWidth] = lanes::sum(0.5 * own * moment);
     lanes::store(&q[at], moment * lanes::load(&q[at]));
   }
+  // The padded lane the triangles name for an edge without a hinge: no moment (also when it lies in a batch
+  // past the last range).
+  if (end >= H.count) q[H.count] = 0.0;
 }
 
 void bendingForces(const BendingHinges& H, const double* scratch, ForceContext& ctx, int begin, int end) {
-  const Scratch s = scratchOf(H, const_cast<double*>(scratch));
+  const std::size_t P = std::size_t(H.padded);
+  const double* bound = scratch + 2 * P;
+  const double* energy = bound + P / std::size_t(kWidth);
   const int b0 = begin / kWidth, b1 = (end + kWidth - 1) / kWidth;
   double w2max = 0;
-  for (int b = b0; b < b1; ++b) w2max = std::max(w2max, s.bound[b]);
+  for (int b = b0; b < b1; ++b) w2max = std::max(w2max, bound[b]);
   if (w2max > 0) ctx.minStableDt = std::min(ctx.minStableDt, 2.0 / std::sqrt(w2max));
   if (ctx.wantEnergy) {
     double e = 0;
-    for (int b = b0; b < b1; ++b) e += s.energy[b];
+    for (int b = b0; b < b1; ++b) e += energy[b];
     ctx.strainEnergy += e;
   }
 
   double* __restrict f = ctx.fint;
   const double* __restrict x = ctx.x;
-  const double* __restrict q = s.moment;
+  const double* __restrict q = scratch + P;
   const int* __restrict tn = H.triNodes.data();
   const int* __restrict th = H.triHinge.data();
   const std::size_t T = std::size_t(H.triPadded);

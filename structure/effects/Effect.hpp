@@ -32,6 +32,7 @@ struct ForceContext {
   /// owned by the caller and shared by all ranges of one evaluation: the ranges of the first pass
   /// (prepareRange) and of the forces (addRange) each write only their own items' part of it.
   double* scratch = nullptr;
+  int pass = 0;  ///< in prepareRange: which of the effect's first passes (Connectivity::prepasses)
 };
 
 /// Which items an effect's forces are a sum over (triangles, cables, hinges, nodes) and which nodes each
@@ -51,6 +52,9 @@ struct Connectivity {
   /// prepareRange must have covered EVERY item before any addRange (each item's forces read a per-item
   /// result of others, e.g. the bending's hinge angles).
   bool prepass = false;
+  /// With prepass: how many first passes, each covering every item before the next (the bending: the
+  /// angles, then the moments), before any addRange.
+  int prepasses = 1;
   std::size_t scratch = 0;  ///< doubles of ForceContext::scratch its passes need
 
   /// Appends the nodes item `item` writes to (with repeats, in any order).
@@ -70,7 +74,7 @@ class Effect {
   /// those items name. The ranges of one evaluation tile [0, items); a caller may send each range's forces
   /// into different arrays. With a prepass, after prepareRange has covered every item.
   virtual void addRange(ForceContext& /*ctx*/, int /*begin*/, int /*end*/) const {}
-  /// The first pass of items [begin, end) at ctx.x into ctx.scratch (Connectivity::prepass); no forces.
+  /// First pass ctx.pass of items [begin, end) at ctx.x into ctx.scratch (Connectivity::prepass); no forces.
   virtual void prepareRange(const ForceContext& /*ctx*/, int /*begin*/, int /*end*/) const {}
 };
 

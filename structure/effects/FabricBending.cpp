@@ -235,6 +235,7 @@ FabricBending::FabricBending(std::string label, const std::vector<int>& conn, co
     }
   }
   layOutHinges();
+  layOutTriangles(conn);
 }
 
 void FabricBending::layOutHinges() {
@@ -266,7 +267,7 @@ void FabricBending::layOutHinges() {
   BendingHinges& B = batched_;
   constexpr int kN = BendingHinges::kNeighbours;
   B.count = int(H);
-  B.padded = (B.count + kLaneWidth - 1) / kLaneWidth * kLaneWidth;
+  B.padded = (B.count + kLaneWidth) / kLaneWidth * kLaneWidth;  // at least one padded lane
   const std::size_t P = std::size_t(B.padded);
   B.nodes.assign(4 * P, 0);
   B.theta0.assign(P, 0.0);
@@ -297,6 +298,60 @@ void FabricBending::layOutHinges() {
   }
 }
 
+void FabricBending::layOutTriangles(const std::vector<int>& conn) {
+  // Each edge's triangles in interiorHinges' order (the first holds the hinge's first opposite vertex).
+  std::map<std::pair<int, int>, std::vector<int>> sides;  // (lower node, higher node) -> 3 t + k
+  for (std::size_t t = 0; 3 * t + 2 < conn.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = conn[3 * t + std::size_t(k)], b = conn[3 * t + std::size_t((k + 1) % 3)];
+      sides[{std::min(a, b), std::max(a, b)}].push_back(int(3 * t) + k);
+    }
+  const std::size_t nt = conn.size() / 3;
+  std::vector<std::array<int, 3>> hinge(nt, {-1, -1, -1});
+  std::vector<std::array<double, 3>> sign(nt, {0, 0, 0});
+  for (std::size_t h = 0; 4 * h < hingeNodes_.size(); ++h) {
+    const int* n = &hingeNodes_[4 * h];
+    const std::vector<int>& two = sides.at({n[2], n[3]});
+    for (std::size_t side = 0; side < 2; ++side) {
+      const std::size_t t = std::size_t(two[side]) / 3, k = std::size_t(two[side]) % 3;
+      // hingeAngle's gradient on the side of x1 is along n1 = (x1 − x3) × (x1 − x4), on the side of x2 along
+      // n2 = (x2 − x4) × (x2 − x3); the triangle's normal is (o − a) × (o − b) for its edge (a, b).
+      const int a = conn[3 * t + k];
+      hinge[t][k] = int(h);
+      sign[t][k] = (side == 0) == (n[2] == a) ? 1.0 : -1.0;
+    }
+  }
+  // Each triangle with the lowest of its hinges; those without a hinge have no force.
+  std::vector<std::pair<int, int>> order;  // (lowest hinge, triangle)
+  for (std::size_t t = 0; t < nt; ++t) {
+    int lowest = -1;
+    for (int h : hinge[t])
+      if (h >= 0 && (lowest < 0 || h < lowest)) lowest = h;
+    if (lowest >= 0) order.emplace_back(lowest, int(t));
+  }
+  std::sort(order.begin(), order.end());
+  BendingHinges& B = batched_;
+  B.triangles = int(order.size());
+  B.triPadded = B.triangles + kLaneWidth;
+  const std::size_t T = std::size_t(B.triPadded);
+  B.triNodes.assign(3 * T, 0);
+  B.triHinge.assign(3 * T, B.count);
+  const int batches = B.padded / kLaneWidth;
+  B.batchFirstTriangle.assign(std::size_t(batches) + 1, B.triangles);
+  for (std::size_t i = order.size(); i-- > 0;) {
+    const std::size_t t = std::size_t(order[i].second);
+    for (std::size_t k = 0; k < 3; ++k) {
+      B.triNodes[k * T + i] = conn[3 * t + k];
+      const int h = hinge[t][k];
+      B.triHinge[k * T + i] = h < 0 ? B.count : sign[t][k] > 0 ? h : ~h;
+    }
+    B.batchFirstTriangle[std::size_t(order[i].first / kLaneWidth)] = int(i);
+  }
+  for (int b = batches; b-- > 0;)
+    B.batchFirstTriangle[std::size_t(b)] =
+        std::min(B.batchFirstTriangle[std::size_t(b)], B.batchFirstTriangle[std::size_t(b) + 1]);
+}
+
 Connectivity FabricBending::connectivity() const {
   Connectivity c;
   c.items = hinges();
@@ -304,14 +359,15 @@ Connectivity FabricBending::connectivity() const {
   c.nodes = hingeNodes_.data();
   c.batch = kLaneWidth;
   c.prepass = true;
-  c.scratch = std::size_t(batched_.padded);
+  c.prepasses = 2;
+  c.scratch = batched_.scratch();
   return c;
 }
 
 double* FabricBending::scratchIn(double* memory) const {
   if (memory == nullptr)
     throw std::logic_error(name() + ": no working memory (ForceContext::scratch of " +
-                           std::to_string(batched_.padded) + " doubles)");
+                           std::to_string(batched_.scratch()) + " doubles)");
   return memory;
 }
 
@@ -339,20 +395,24 @@ std::array<double, 3> FabricBending::curvature(int t, const double* x) const {
 
 void FabricBending::addForces(ForceContext& ctx) const {
   if (hinges() == 0) return;
-  double* dtheta = scratchIn(ctx.scratch);
-  bendingAngles(batched_, ctx.x, dtheta, 0, hinges());
-  bendingForces(batched_, mass_ != nullptr ? mass_->data() : nullptr, dtheta, ctx, 0, hinges());
+  double* scratch = scratchIn(ctx.scratch);
+  bendingAngles(batched_, mass_ != nullptr ? mass_->data() : nullptr, ctx.x, scratch, 0, hinges());
+  bendingMoments(batched_, scratch, ctx.wantEnergy, 0, hinges());
+  bendingForces(batched_, scratch, ctx, 0, hinges());
 }
 
 void FabricBending::prepareRange(const ForceContext& ctx, int begin, int end) const {
   if (begin >= end) return;
-  bendingAngles(batched_, ctx.x, scratchIn(ctx.scratch), begin, end);
+  if (ctx.pass == 0)
+    bendingAngles(batched_, mass_ != nullptr ? mass_->data() : nullptr, ctx.x, scratchIn(ctx.scratch), begin,
+                  end);
+  else
+    bendingMoments(batched_, scratchIn(ctx.scratch), ctx.wantEnergy, begin, end);
 }
 
 void FabricBending::addRange(ForceContext& ctx, int begin, int end) const {
   if (begin >= end) return;
-  bendingForces(batched_, mass_ != nullptr ? mass_->data() : nullptr, scratchIn(ctx.scratch), ctx, begin,
-                end);
+  bendingForces(batched_, scratchIn(ctx.scratch), ctx, begin, end);
 }
 
 double FabricBending::energy(const double* x) const {

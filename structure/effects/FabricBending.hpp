@@ -54,10 +54,11 @@ class FabricBending final : public Effect {
                 const std::vector<double>* mass, double rigidity);
   std::string name() const override { return "bending:" + label_; }
   void addForces(ForceContext& ctx) const override;
-  /// The hinges, 4 nodes each, in batches of the lane width (BendingHinges.hpp): a first pass (every
-  /// hinge's angle: prepareRange) before each hinge's moment, from its row of the angles' stiffness, and its
-  /// forces on its four nodes (addRange). addForces runs both over all hinges. Working memory
-  /// (ForceContext::scratch): one double per hinge (padded to whole batches), its Δθ.
+  /// The hinges, 4 nodes each, in batches of the lane width (BendingHinges.hpp): two first passes (every
+  /// hinge's angle and step bound, then every hinge's moment from its row of the angles' stiffness:
+  /// prepareRange with ctx.pass 0, 1), then the forces of the triangles whose lowest hinge is in the range,
+  /// on their three nodes, all of them the range's hinges' nodes (addRange). addForces runs the three over
+  /// all hinges. Working memory (ForceContext::scratch): BendingHinges::scratch() doubles.
   Connectivity connectivity() const override;
   void addRange(ForceContext& ctx, int begin, int end) const override;
   void prepareRange(const ForceContext& ctx, int begin, int end) const override;
@@ -83,6 +84,8 @@ class FabricBending final : public Effect {
   double* scratchIn(double* memory) const;
   /// The per-hinge constants of the batched evaluation (from tris_).
   void layOutHinges();
+  /// The triangles of the batched force pass: each with its hinges and their signs, ordered by the lowest.
+  void layOutTriangles(const std::vector<int>& conn);
   std::string label_;
   std::vector<int> hingeNodes_;  ///< 4 per hinge: the two opposite vertices, then the edge's two
   std::vector<double> theta0_;

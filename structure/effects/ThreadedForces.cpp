@@ -22,7 +22,7 @@ ThreadedForces::ThreadedForces(std::vector<const Effect*> effects, int threads, 
     if (c.items > 0 && !(c.scattered && c.items < kMinParallelItems)) {
       if (!c.light && c.items > most) most = c.items, largest = int(split_.size());
       split_.push_back({effects_[i], c, scratch_.of(i)});
-      prepass_ = prepass_ || c.prepass;
+      if (c.prepass) prepasses_ = std::max(prepasses_, c.prepasses);
     } else {
       whole_.push_back({effects_[i], c, scratch_.of(i)});
     }
@@ -130,11 +130,12 @@ void ThreadedForces::evaluateWhole(const ForceContext& base) {
 
 void ThreadedForces::evaluateShares(int t, int nt, const ForceContext& base) {
   const int shares = this->shares();
-  if (prepass_) {
+  for (int pass = 0; pass < prepasses_; ++pass) {
     ForceContext ctx = base;
+    ctx.pass = pass;
     for (int s = t; s < shares; s += nt)
       for (const Part& p : split_) {
-        if (!p.items.prepass) continue;
+        if (!p.items.prepass || pass >= p.items.prepasses) continue;
         // Ranges on whole batches too (a batched first pass writes its batches whole); the last takes the
         // rest.
         const long n = p.items.items, a = std::max(1, p.items.batch);

@@ -9,8 +9,8 @@
 // bending), except a scattered one (Connectivity::scattered: the cables) with fewer than kMinParallelItems
 // items; a light one (Connectivity::light: gravity) splits but never decides the threading. Each is cut into
 // as many contiguous item ranges as there are shares (on multiples of Connectivity::batch), one share per
-// thread. An effect with a first pass over all its items (Connectivity::prepass: the bending's hinge angles)
-// has that pass split first, then a barrier. The
+// thread. An effect with first passes over all its items (Connectivity::prepass, prepasses: the bending's
+// hinge angles, then its moments) has each of them split first, each followed by a barrier. The
 // nodes are cut into as many bands, at the lowest node of each share's first element of the largest split
 // effect: the elements are sorted by their lowest node and the nodes follow a Morton curve, so nearly all of
 // a share's elements have every node in its own band. Those elements write straight into the node arrays,
@@ -98,7 +98,7 @@ class ThreadedForces {
   std::vector<const Effect*> effects_;
   EffectScratch scratch_;  ///< every effect's working memory (ForceContext::scratch), in effects_ order
   std::vector<Part> split_, whole_;
-  bool prepass_ = false;  ///< a split effect has a first pass over all its items (Connectivity::prepass)
+  int prepasses_ = 0;  ///< the most first passes over all its items of a split effect (Connectivity::prepass)
   std::vector<Share> shares_;
   double wholeDt_ = 0, wholeEnergy_ = 0;
 };

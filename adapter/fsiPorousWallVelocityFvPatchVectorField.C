@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <numeric>
+#include <vector>
 
 #include "addToRunTimeSelectionTable.H"
 #include "fsiPorousWallVelocityFvPatchVectorField.H"
@@ -100,20 +101,41 @@ label fsiPorousWallVelocityFvPatchVectorField::partnerPatch() const {
   return id;
 }
 
+namespace {
+
+/// The values of a patch field on every processor, in processor order (the local field in serial): a baffle's
+/// two sides may be decomposed onto different processors.
+template <class Type>
+tmp<Field<Type>> allValues(const Field<Type>& local) {
+  if (!Pstream::parRun()) return tmp<Field<Type>>::New(local);
+  List<Field<Type>> all(Pstream::nProcs());
+  all[Pstream::myProcNo()] = local;
+  Pstream::gatherList(all);
+  Pstream::scatterList(all);
+  label n = 0;
+  forAll(all, proc) n += all[proc].size();
+  auto out = tmp<Field<Type>>::New(n);
+  n = 0;
+  forAll(all, proc) forAll(all[proc], i) out.ref()[n++] = all[proc][i];
+  return out;
+}
+
+}  // namespace
+
 void fsiPorousWallVelocityFvPatchVectorField::pairFaces() {
   const fvPatch& other = patch().boundaryMesh()[partnerPatch()];
   const vectorField& c = patch().Cf();
-  const vectorField& co = other.Cf();
+  const vectorField co(allValues(other.Cf()));  // the partner's faces on all processors
   const scalarField& area = patch().magSf();
-  if (co.size() != c.size())
-    FatalErrorInFunction << source_.c_str() << ": fsiPorousWall on patch " << patch().name() << ": "
-                         << c.size() << " faces but partner " << partner_ << " has " << co.size()
-                         << " (not the two sides of one baffle; in parallel, decompose with preserveBaffles)"
-                         << exit(FatalError);
-  const label n = c.size();
+  const label total = returnReduce(c.size(), sumOp<label>());
+  if (co.size() != total)
+    FatalErrorInFunction << source_.c_str() << ": fsiPorousWall on patch " << patch().name() << ": " << total
+                         << " faces but partner " << partner_ << " has " << co.size()
+                         << " (not the two sides of one baffle)" << exit(FatalError);
+  const label n = c.size(), m = co.size();
   auto close = [&](label i, label j) { return magSqr(c[i] - co[j]) <= 1e-6 * area[i]; };
   partnerFace_.setSize(n);
-  bool sameOrder = true;
+  bool sameOrder = n == m;
   for (label i = 0; i < n && sameOrder; ++i) sameOrder = close(i, i);
   if (sameOrder) {
     std::iota(partnerFace_.begin(), partnerFace_.end(), 0);
@@ -122,16 +144,16 @@ void fsiPorousWallVelocityFvPatchVectorField::pairFaces() {
   // Nearest centre: the partner's faces sorted along the widest axis, a window of the tolerance searched.
   const boundBox box(co, false);
   const direction axis = findMax(box.span());
-  labelList order(identity(n));
+  labelList order(identity(m));
   std::sort(order.begin(), order.end(), [&](label i, label j) { return co[i][axis] < co[j][axis]; });
-  scalarList keys(n);
+  scalarList keys(m);
   forAll(order, k) keys[k] = co[order[k]][axis];
-  boolList taken(n, false);
+  std::vector<bool> taken(keys.size(), false);
   for (label i = 0; i < n; ++i) {
     const scalar tol = 1e-3 * std::sqrt(area[i]);
     label best = -1;
     const auto lo = std::lower_bound(keys.begin(), keys.end(), c[i][axis] - tol) - keys.begin();
-    for (label k = lo; k < n && keys[k] <= c[i][axis] + tol; ++k)
+    for (label k = lo; k < m && keys[k] <= c[i][axis] + tol; ++k)
       if (close(i, order[k]) && (best < 0 || magSqr(c[i] - co[order[k]]) < magSqr(c[i] - co[best])))
         best = order[k];
     if (best < 0 || taken[best])
@@ -169,7 +191,7 @@ void fsiPorousWallVelocityFvPatchVectorField::updateCoeffs() {
                          << pName_ << " has dimensions " << p.dimensions()
                          << "; only the kinematic pressure of an incompressible solver" << exit(FatalError);
   const scalarField& pThis = p.boundaryField()[patch().index()];
-  const scalarField& pOther = p.boundaryField()[partnerPatch()];
+  const scalarField pOther(allValues(p.boundaryField()[partnerPatch()]));
   const auto& turbulence = db().lookupObject<turbulenceModel>(
       IOobject::groupName(turbulenceModel::propertiesName, internalField().group()));
   const scalarField nu(turbulence.nu(patch().index()));

@@ -3,8 +3,10 @@
 # Allrun (four speeds and a moving cloth): the drop across the adapter's permeable wall pair (fsiPorousWall) is
 # the Darcy-Forchheimer law at the measured through-flow, the through-flow is the inflow (minus the wall's speed
 # when it moves), the two sides' fluxes cancel, a and b fitted back are the inputs (the case's own checks, exit
-# 1 naming a failure). Then the located errors: a partner patch with another face count, a partner that is no
-# patch. Exit 77 (skipped) without Debian's OpenFOAM or the adapter library.
+# 1 naming a failure). Then: one side's faces reversed in the mesh (paired by nearest centre), the two sides on
+# different processors (gathered), and the located errors: a partner patch with another face count, a partner
+# that is no patch, a partner whose faces are elsewhere. Exit 77 (skipped) without Debian's OpenFOAM or the
+# adapter library.
 # Usage: run_porous_wall_channel_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -u
 src=$1/cases/fluid/porous-wall-channel
@@ -61,6 +63,44 @@ assert abs(drop / law - 1) < s["tolerance"], (drop, law)
 assert abs(up + down) <= 1e-9 * abs(up), (up, down)
 print(f"reversed faces: through-flow {u:.6g} m/s, drop {drop:.6g}, law {law:.6g} (kinematic)")
 PY
+# in parallel with the cloth's two sides on different processors (simple decomposition 2 x 1 at x = 0: the
+# upstream cells and cloth_up on one, the downstream cells and cloth_down on the other): the partner's faces
+# and pressures come from the other processor; the run still follows the law and conserves mass
+if command -v mpirun > /dev/null && command -v decomposePar > /dev/null; then
+  run=$work/runs/u_1
+  rm -rf "$run"/[1-9]* "$run/postProcessing" "$run"/processor*
+  printf 'FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }\nnumberOfSubdomains 2;\nmethod simple;\ncoeffs { n (2 1 1); }\n' > "$run/system/decomposeParDict"
+  mpi=(mpirun -np 2)
+  mpirun --version 2> /dev/null | grep -q "Open MPI" && mpi+=(--allow-run-as-root --oversubscribe)
+  (cd "$run" && export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam} LD_LIBRARY_PATH=$FSI_LIB_DIR:${LD_LIBRARY_PATH:-} &&
+    decomposePar > log.decomposePar 2>&1 && "${mpi[@]}" pimpleFoam -parallel > log.parallel 2>&1) ||
+    fail "the parallel run: $run/log.parallel"
+  /usr/bin/python3 - "$run" "$work/summary.json" <<'PY' || fail "the parallel run's numbers"
+import glob, json, sys
+run, s = sys.argv[1], json.load(open(sys.argv[2]))
+sizes = {}
+for d in glob.glob(run + "/processor*/constant/polyMesh/boundary"):
+    t = open(d).read()
+    for name in ("cloth_up", "cloth_down"):
+        i = t.index(name + "\n")
+        sizes[(d.split("/")[-4], name)] = int(t[t.index("nFaces", i):].split()[1].rstrip(";"))
+# each processor holds one side only
+assert sorted(sizes.values()) == [0, 0, 4, 4] and sizes[("processor0", "cloth_up")] != sizes[("processor1", "cloth_up")], sizes
+last = lambda f: [float(w) for w in open(f).read().strip().split("\n")[-1].split()]
+p = last(run + "/postProcessing/plenums/0/p")
+up = last(run + "/postProcessing/throughFlow/0/surfaceFieldValue.dat")[1]
+down = last(run + "/postProcessing/throughFlowDown/0/surfaceFieldValue.dat")[1]
+u, drop = up / 0.1, p[1] - p[2]
+serial = [q for q in s["points"] if q["name"] == "u_1"][0]
+law = s["a_per_m"] * s["nu"] * u + s["b"] * u * u
+assert abs(drop / law - 1) < s["tolerance"], (drop, law)
+assert abs(up + down) <= 1e-9 * abs(up), (up, down)
+assert abs(u / serial["through_flow"] - 1) < 1e-6, (u, serial["through_flow"])
+print(f"parallel, the sides apart: through-flow {u:.9g} m/s (serial {serial['through_flow']:.9g}), drop {drop:.6g}, law {law:.6g}")
+PY
+else
+  echo "no mpirun/decomposePar: the parallel check skipped"
+fi
 # located errors: the run's field file names the entry (file and line) and what is wrong
 run=$work/runs/u_0.5
 expect_error() {  # $1: sed edit of 0/U, $2: text the error must contain

@@ -14,6 +14,7 @@
 #include "fsiFloatingPointTraps.H"
 #include "fsiInterfaceDisplacementPointPatchVectorField.H"
 #include "fsiInterfaceTransfer.H"
+#include "fsiPorousWallVelocityFvPatchVectorField.H"
 #include "fsiRankWait.H"
 #include "fsiRestartState.H"
 #include "fsiStopRequest.H"
@@ -101,10 +102,12 @@ void fsiCoupling::checkSetUp(const dictionary& dict) const {
                                    << " is of type " << pd.boundaryField()[id].type()
                                    << "; the coupling sets it: use type fsiInterfaceDisplacement in "
                                    << "0/pointDisplacement" << exit(FatalIOError);
-    if (!isA<movingWallVelocityFvPatchVectorField>(U.boundaryField()[id]))
+    if (!isA<movingWallVelocityFvPatchVectorField>(U.boundaryField()[id]) &&
+        !isA<fsiPorousWallVelocityFvPatchVectorField>(U.boundaryField()[id]))
       FatalIOErrorInFunction(dict) << "fsiCoupling: U on patch " << config_.patches[i] << " is of type "
                                    << U.boundaryField()[id].type()
-                                   << "; a moving interface needs movingWallVelocity" << exit(FatalIOError);
+                                   << "; a moving interface needs movingWallVelocity (or fsiPorousWall, a "
+                                   << "permeable one)" << exit(FatalIOError);
   }
 }
 

@@ -111,6 +111,27 @@ def vent_series(case, ref):
     return times, uz, bern
 
 
+def cloth_setting(case):
+    """The cloth's permeability from constant/cloth: None (impermeable) or {"a": .., "b": .., "relaxation": ..}."""
+    path = os.path.join(case, "constant", "cloth")
+    if not os.path.exists(path):
+        return None
+    for line in open(path):
+        code = line.split("//")[0]
+        if "clothU" in code and "fsiPorousWall" in code:
+            words = code.replace("{", " ").replace("}", " ").replace(";", " ").split()
+            get = lambda k, d=None: float(words[words.index(k) + 1]) if k in words else d
+            return {"a": get("a"), "b": get("b"), "relaxation": get("relaxation", 1.0)}
+    return None
+
+
+def cloth_flow(case, t0):
+    """Mean volume flux through the cloth (out of the `canopy` side, relative to the moving cloth) after t0."""
+    q = all_parts(os.path.join(case, "postProcessing", "clothFlow"), "surfaceFieldValue.dat")
+    times = sorted(q)
+    return mean_over(times, [q[x][0] for x in times], t0)[0] if times else None
+
+
 def main():
     case = sys.argv[1]
     import yaml
@@ -184,6 +205,11 @@ def main():
         rc["vent"] = {"axial_velocity": m_vu, "bernoulli_velocity": m_vb, "ratio": m_vu / m_vb if m_vb else None,
                       "flow_rate": m_vu * ref["vent_area"],
                       "flow_over_mouth_flow": m_vu * ref["vent_area"] / (u * m_ap)}
+    porous = cloth_setting(case)
+    flow = cloth_flow(case, t0)
+    if porous is not None or flow:
+        rc["cloth"] = dict(porous or {}, flow_rate=flow,
+                           flow_over_mouth_flow=abs(flow) / (u * m_ap) if flow is not None else None)
     results["C_D_projected"] = entry(rc["C_D_projected"], end, ref["cd_projected"], end)
     results["C_D0_vs_flat_circular"] = entry(m_cd0, end, ref["cd0_flat_circular"], end)
     results["Dp_D0_vs_flat_circular"] = entry(m_dp, end, ref["dp_d0_flat_circular"], end)
@@ -203,7 +229,8 @@ def main():
     out["round_canopy"] = rc
     json.dump(out, open(path, "w"), indent=2)
     b = rc["breathing"]
-    print(f"round canopy (Re = {rc['reynolds']:.3g}, vent {100 * rc['geometric_porosity']:.2g} % of S0, cloth impermeable), "
+    cloth = (f"porous cloth a = {porous['a']:g} 1/m, b = {porous['b']:g}" if porous else "cloth impermeable")
+    print(f"round canopy (Re = {rc['reynolds']:.3g}, vent {100 * rc['geometric_porosity']:.2g} % of S0, {cloth}), "
           f"t = {t0:g} .. {end:g} s ({nw} windows):")
     print(f"  C_D0 = {m_cd0:.4g} (+- {sd_cd0:.2g}); D_p/D0 = {m_dp:.4g}; C_D on the projected area {m_cdp:.4g}, "
           f"blockage-corrected {rc['C_D_projected']:.4g} (rigid cup 1.33 .. 1.42): "
@@ -214,6 +241,9 @@ def main():
         print(f"  vent: {v['axial_velocity']:.3g} m/s through it, Bernoulli {v['bernoulli_velocity']:.3g} m/s, ratio "
               f"{v['ratio']:.3g} (orifice 0.61 .. 1): {'PASS' if results['vent_velocity_ratio']['within'] else 'outside'}; "
               f"{100 * v['flow_over_mouth_flow']:.2g} % of the flow the mouth faces")
+    if rc.get("cloth", {}).get("flow_rate") is not None:
+        print(f"  cloth: {abs(rc['cloth']['flow_rate']):.3g} m3/s through it, "
+              f"{100 * rc['cloth']['flow_over_mouth_flow']:.2g} % of the flow the mouth faces")
     c = rc["confluence_balance"]
     print(f"  confluence: reaction {c['reaction_z']:.4g} N against the fluid's {c['fluid_force_z']:.4g} N, imbalance "
           f"{c['relative_imbalance']:.2g} (limit {c['tolerance']}): {'PASS' if c['within'] else 'outside'}")

@@ -4,19 +4,27 @@
 # interface force is the same on the fluid and structure sides (< 1e-6 relative, every window), every
 # quantity marked `check: true` in reference.yaml lies within the span of the published values widened by its
 # tolerance, and the case's physical `checks` (momentum balance, mesh quality; see summarize.py) pass.
-# Usage: run_case_test.sh NAME BUILD_DIR WORK_DIR [END_TIME]
+# With CLOTH=porous in the environment (the round canopy only) the case's constant/cloth is switched to its
+# porous entry (the adapter's fsiPorousWall) and the summary must report an outward flow through the cloth.
+# Usage: [CLOTH=porous] run_case_test.sh NAME BUILD_DIR WORK_DIR [END_TIME]
 set -uo pipefail
 name=$1 build=$2 work=$3 end=${4:-}
+cloth=${CLOTH:-}
 src="$(cd "$(dirname "$0")/../../cases/coupled" && pwd)"
 rm -rf "$work" && mkdir -p "$work"
 cp -r "$src/$name" "$work/"
 unset FSI_SHARE_DIR
 . "$build/share/fsi/fsi-env.sh"
 cd "$work/$name" || exit 1
+if [ "$cloth" = porous ]; then
+  sed -i -e 's|^clothU { type movingWallVelocity;|// &|' -e 's|^// *\(clothU { type fsiPorousWall;\)|\1|' constant/cloth
+  grep -q "^clothU { type fsiPorousWall;" constant/cloth && ! grep -q "^clothU { type movingWallVelocity;" constant/cloth ||
+    { echo "FAIL: could not switch constant/cloth to the porous entry"; exit 1; }
+fi
 ./Allclean
 ./Allrun $end || { echo "FAIL: Allrun failed"; exit 1; }
 want=${end:-$(foamDictionary -entry endTime -value system/controlDict)}
-/usr/bin/python3 - "$want" <<'PY'
+/usr/bin/python3 - "$want" "$cloth" <<'PY'
 import glob, json, os, sys
 s = json.load(open("summary.json"))
 # every time directory is a real one (fields), none a leftover of a repeated coupling step
@@ -40,6 +48,15 @@ for k in ("momentum_balance", "mesh_quality"):
         print(f"{k}: {s[k]}")
 for k, v in s["results"].items():
     print(f"{k}: {v['value']} at t = {v['time']} (accepted {v['accepted_range']}, check {v['check']}, within {v['within']})")
+if sys.argv[2] == "porous":
+    # the porous cloth passes air: a flow through it (round_canopy_summary.py's cloth block), a positive
+    # fraction below one of the flow the mouth faces (continuity: what leaves through the cloth came in there)
+    cloth = s.get("round_canopy", {}).get("cloth", {})
+    frac = cloth.get("flow_over_mouth_flow")
+    print(f"porous cloth: {cloth}")
+    if cloth.get("a") is None or frac is None or not 0.0 < frac < 1.0:
+        print("FAIL: no porous cloth with a flow through it below the mouth's")
+        ok = False
 sys.exit(0 if ok else 1)
 PY
 rc=$?

@@ -82,9 +82,10 @@ inline void store(double* p, Vd v) {
 
 /// atan2(y, x) of every lane, branch-free: the ratio of the smaller to the larger magnitude reduced to
 /// |r| ≤ tan(π/8) (through atan(t) = π/4 + atan((t − 1)/(t + 1)) above it), atan(r) = r + r³ P(r²) with
-/// P of degree 10 (a Chebyshev interpolant of (atan(r)/r − 1)/r², fitted in 50-digit arithmetic; truncation
-/// below 5e-18 relative), then the octant and quadrant by blends. Within a few units in the last place of
-/// std::atan2 (tests/unit/test_lanes_atan2.cpp); signed zeros as std::atan2 takes them.
+/// P of degree 10 evaluated by Estrin's scheme (a Chebyshev interpolant of (atan(r)/r − 1)/r², fitted in
+/// 50-digit arithmetic; truncation below 5e-18 relative), then the octant and quadrant by blends. Within a
+/// few units in the last place of std::atan2 (tests/unit/test_lanes_atan2.cpp); signed zeros as std::atan2
+/// takes them.
 inline Vd atan2(Vd y, Vd x) {
   constexpr double kPi = 3.14159265358979323846, kTanPi8 = 0.41421356237309504880;
   const Vd ax = abs(x), ay = abs(y);
@@ -94,17 +95,16 @@ inline Vd atan2(Vd y, Vd x) {
   const Vd safeDen = select(den > 0.0, den, splat(1.0));
   const Vd r = select(big, num - den, num) / select(big, num + den, safeDen);
   const Vd u = r * r;
-  Vd p = splat(-0.01917688711906226);
-  p = p * u + 0.03923165829558719;
-  p = p * u - 0.0508544973794026;
-  p = p * u + 0.0585814891280221;
-  p = p * u - 0.06664511447381948;
-  p = p * u + 0.07692183190826087;
-  p = p * u - 0.09090904578123903;
-  p = p * u + 0.11111111015256361;
-  p = p * u - 0.14285714284666542;
-  p = p * u + 0.1999999999999552;
-  p = p * u - 0.3333333333333333;
+  // P(u) = Σ c_k u^k by Estrin's scheme: pairs, then u², u⁴ and u⁸ (four dependent steps after u, where
+  // Horner's rule chains ten multiply-adds; the angle is on the bending kernel's critical path).
+  const Vd u2 = u * u, u4 = u2 * u2, u8 = u4 * u4;
+  const Vd q0 = -0.3333333333333333 + 0.1999999999999552 * u;
+  const Vd q1 = -0.14285714284666542 + 0.11111111015256361 * u;
+  const Vd q2 = -0.09090904578123903 + 0.07692183190826087 * u;
+  const Vd q3 = -0.06664511447381948 + 0.0585814891280221 * u;
+  const Vd q4 = -0.0508544973794026 + 0.03923165829558719 * u;
+  const Vd s0 = q0 + q1 * u2, s1 = q2 + q3 * u2, s2 = q4 - 0.01917688711906226 * u2;
+  const Vd p = (s0 + s1 * u4) + s2 * u8;
   Vd a = r + r * u * p;
   a = select(big, a + 0.25 * kPi, a);
   a = select(swap, 0.5 * kPi - a, a);

@@ -233,6 +233,15 @@ runApplication() {
   "$app" "$@" > "$log" 2>&1 || { echo "$app failed; the end of $log:" >&2; tail -20 "$log" >&2; exit 1; }
 }
 
+# runLogged LOG NAME [ARGS...]: runs NAME with its output in LOG (a name of the caller's choosing: the new
+# meshes of a remeshing run, log.snappyHexMesh.remesh1, ...); stops on failure
+runLogged() {
+  local log=$1 app=$2
+  shift 2
+  echo "Running $app (log: $log)"
+  "$app" "$@" > "$log" 2>&1 || { echo "$app failed; the end of $log:" >&2; tail -20 "$log" >&2; exit 1; }
+}
+
 # fsiProgress: the coupling's progress lines from the solver output on stdin. Lines with a time ("t = ")
 # come every window, so they are shown at most every 2 s of wall time (and the last one at the end);
 # other lines (set-up, warnings, non-converged windows, totals) are shown as they come.

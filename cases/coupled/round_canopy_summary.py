@@ -13,6 +13,13 @@ objects), averaged over the run's last `average_last` seconds (reference.yaml, r
   breathing: the axial force's and the skirt radius's fluctuation over the window, the dominant period
   (Strouhal number on D_p), the lateral force.
 Each checked entry goes into summary.json's results (the format of summarize.py) and all_checks_within_tolerance.
+A remeshing run (system/remeshing) reads its histories across the meshes (coupling.csv goes on, postProcessing/
+holds one <start time>/ folder per mesh); round_canopy.remeshes lists the new meshes (structure/remesh.N/request:
+the time and the reason, stageN/ the case before it) with the histories across each: the axial force's jump
+(the first window on the new mesh against the last one on the old, relative, beside the largest change between
+two windows in the 10 windows before), its mean over the 10 windows after against the 10 before (the restart
+on mapped fields shakes the force for a few windows; a lost or misplaced field would shift it), and the
+skirt radius's jump (the structure goes on from its state: one window's motion).
 Plots: plots/round_canopy_history.png (C_D0, D_p/D0, vent velocity ratio against time),
 plots/round_canopy_flow.png (pressure across the cloth; the axial velocity in the plane y = 0), when the
 surfaces function object wrote them.
@@ -132,6 +139,33 @@ def cloth_flow(case, t0):
     return mean_over(times, [q[x][0] for x in times], t0)[0] if times else None
 
 
+def remeshes(case, t, fz, skirt):
+    """The new meshes of a remeshing run: number, time, reason, stage folder, the axial force's jump across it."""
+    out = []
+    for d in glob.glob(os.path.join(case, "structure", "remesh.*")):
+        n = os.path.basename(d).split(".", 1)[1]
+        req = os.path.join(d, "request")
+        if not n.isdigit() or not os.path.exists(req):
+            continue
+        info = dict(line.rstrip("\n").split(" ", 1) for line in open(req) if " " in line)
+        tr = float(info["time"])
+        e = {"mesh": int(n), "time": tr, "reason": info.get("reason", ""), "stage": f"stage{n}",
+             "stage_exists": os.path.isdir(os.path.join(case, f"stage{n}"))}
+        # the windows ending at T (the old mesh's last) and the next one (the new mesh's first)
+        k = next((i for i, x in enumerate(t) if abs(x - tr) <= 1e-6 * max(1.0, tr)), None)
+        if k is not None and k + 1 < len(t) and fz[k]:
+            e["force_before"], e["force_after"] = fz[k], fz[k + 1]
+            e["force_jump"] = abs(fz[k + 1] - fz[k]) / abs(fz[k])
+            steps = [abs(fz[i + 1] - fz[i]) / abs(fz[i]) for i in range(max(0, k - 10), k) if fz[i]]
+            e["largest_step_before"] = max(steps) if steps else None
+            before, after = fz[max(0, k - 9):k + 1], fz[k + 1:k + 11]
+            e["force_mean_before"], e["force_mean_after"] = sum(before) / len(before), sum(after) / len(after)
+            e["force_mean_change"] = e["force_mean_after"] / e["force_mean_before"] - 1
+            e["skirt_radius_jump"] = abs(skirt[k + 1] - skirt[k])
+        out.append(e)
+    return sorted(out, key=lambda e: e["mesh"])
+
+
 def main():
     case = sys.argv[1]
     import yaml
@@ -162,6 +196,18 @@ def main():
     rc = {"reynolds": u * d0 / ref["nu"], "speed": u, "q": q, "nominal_area": s0,
           "geometric_porosity": ref["vent_area"] / s0, "cloth_porosity": 0.0,
           "average_from": t0, "average_to": end, "windows_averaged": None}
+    rc["remeshes"] = remeshes(case, t, fz, col("skirt_radius"))
+    for e in rc["remeshes"]:
+        jump = (f": the axial force {e['force_before']:.4g} -> {e['force_after']:.4g} N across it "
+                f"({100 * e['force_jump']:.2g} %; the largest change between two windows before it "
+                f"{100 * e['largest_step_before']:.2g} %), its mean over 10 windows {e['force_mean_before']:.4g} -> "
+                f"{e['force_mean_after']:.4g} N ({100 * e['force_mean_change']:+.2g} %), the skirt radius "
+                f"{1000 * e['skirt_radius_jump']:.2g} mm" if "force_jump" in e and e["largest_step_before"] is not None
+                else "")
+        print(f"new mesh {e['mesh']} at t = {e['time']:g} s ({e['reason']}), the case before it in {e['stage']}/{jump}")
+    when = ", ".join(f"{e['time']:g}" for e in rc["remeshes"])
+    print(f"new meshes: {len(rc['remeshes'])}" + (f" (at t = {when} s)" if when else
+                                                  " (remeshing off, or the mesh followed the canopy to the end)"))
     results = out.setdefault("results", {})
     if t0 < ref["average_last"]:
         rc["note"] = f"the run ends at t = {end} s, too short to average over its last {ref['average_last']} s after as long a start: nothing measured"

@@ -59,7 +59,8 @@ def plot(out, ramair_out, png):
     runs = ((Path(ramair_out) / "s1", 2.948, "8 cells, main job's mesh (y+ ~450)", "C0", "-"),
             (Path(ramair_out) / "s1-f3", 2.948, "8 cells, prism layers from step 400", "C0", "--"),
             (Path(out) / "coarse", 2.9235, "16 cells, main job's mesh", "C3", "-"),
-            (Path(out) / "layers", 2.9235, "16 cells, prism layers from step 400", "C3", "--"))
+            (Path(out) / "layers", 2.9235, "16 cells, prism layers from step 400", "C3", "--"),
+            (Path(out) / "brake-layers", 2.9235, "16 cells, layers, symmetric brake from 3.835 s", "C2", "-."))
     fig, ax = plt.subplots(1, 3, figsize=(14, 4))
     for d, area, label, colour, style in runs:
         rows = history(d)
@@ -72,11 +73,14 @@ def plot(out, ramair_out, png):
     for a, lab in zip(ax, ("CL (canopy, design area)", "CD (canopy, design area)",
                            "chord pitch [deg] (mean LE -> mean TE)")):
         a.axvline(400 * 0.00833697, color="grey", ls=":", lw=1)
-        a.set(xlabel="flow time t [s] (dotted: the new mesh with layers, step 400)", ylabel=lab)
+        a.set(xlabel="flow time t [s]", ylabel=lab)
         a.grid(alpha=0.3)
     ax[1].set_ylim(0, 0.4)
+    for a in ax:
+        a.axvspan(BRAKE["brake_start"], BRAKE["brake_start"] + BRAKE["brake_duration"], color="C2", alpha=0.08)
     ax[0].legend(fontsize=8)
-    fig.suptitle("The coupled canopy when its wall cells become thin at its trim: 8 cells against 16", fontsize=10)
+    fig.suptitle("The coupled canopy when its wall cells become thin at its trim (dotted: the new mesh with layers, "
+                 "step 400): 8 cells against 16; green band: the 16-cell canopy's symmetric brake pulled", fontsize=10)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
     plt.close(fig)

@@ -10,6 +10,9 @@ design"). Its runs take 10-50 min each, so the check is of what the study stands
              docs/data/ramair_convergence.json's s1 as committed
   docs       the numbers docs/AERODYNAMICS.md quotes for the runs (CL and CD on the design area, the centre
              section's angle) are the committed data's, rounded as printed
+  brake      the symmetric brake's run (both toggles a quarter chord, layered wall) against the same run
+             without brakes, both trimmed: CL and CD of the canopy higher, and the span-averaged section angle
+             higher (what a parafoil's symmetric brake does; issue 34)
 Usage: test_cells16.py SOURCE_DIR
 """
 import json
@@ -63,6 +66,19 @@ def main(src):
                 bad.append(f"{key}: docs/AERODYNAMICS.md does not quote its {what} {text}")
         print(f"{name}: CL {quoted['CL']}, CD {quoted['CD']}, centre alpha {quoted['alpha']}, "
               f"trim reached {row['trim']['trim_reached']}")
+    off, on = data.get("cells16_layers"), data.get("cells16_layers_symmetric_brake")
+    if off and on and "CL_design_area" in off and "CL_design_area" in on:
+        for what, key in (("CL", "CL_design_area"), ("CD of the canopy", "CD_canopy_design_area")):
+            if not on[key] > off[key]:
+                bad.append(f"the symmetric brake does not raise {what}: {on[key]:.3f} against {off[key]:.3f}")
+        a_off, a_on = off["section_alpha"]["span_average_deg"], on["section_alpha"]["span_average_deg"]
+        if not a_on > a_off:
+            bad.append(f"the symmetric brake does not raise the span-averaged angle: {a_on:.2f} against {a_off:.2f} deg")
+        if not (on["trim"]["trim_reached"] and off["trim"]["trim_reached"]):
+            bad.append("the brake comparison needs both runs trimmed")
+        print(f"symmetric brake: CL {off['CL_design_area']:.3f} -> {on['CL_design_area']:.3f}, CD "
+              f"{off['CD_canopy_design_area']:.3f} -> {on['CD_canopy_design_area']:.3f}, span-averaged angle "
+              f"{a_off:.2f} -> {a_on:.2f} deg")
     for b in bad:
         print("FAILED:", b)
     return 1 if bad else 0

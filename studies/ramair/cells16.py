@@ -11,11 +11,12 @@ Runs: `coarse` is the main job's fluid mesh and wall functions (y+ ~450); `layer
 control of trim_study.py's level f3 (400 steps on the main job's mesh, then a new mesh snapped to the trimmed
 canopy with 3 prism layers, `wall_layers 3` with `wall_after 400`, 300 more steps' flow time at a quarter of the
 step); `brake-layers` is `layers` with both brakes drawn a quarter chord from 0.5 s after the new mesh (the
-symmetric brake; remesh_below 0.1 as brake.settings); `layers-rig11` and `layers-rig15` are `layers` at the
-rigging angles 11 and 15 deg (the main job's is 13): the layered canopy's polar. --plot draws docs/img/ramair_cells16_wall.png: CL, CD and the chord pitch over the flow time of these runs
-beside the 8-cell canopy's s1 and s1-f3 of trim_study.py (their folders in RAMAIR_OUT, studies-out/ramair by
-default). Writes docs/data/ramair_cells16.json (a run not asked keeps its committed row). About 10 min (coarse) and
-20-40 min (layers) on an idle 2-core machine."""
+symmetric brake; remesh_below 0.1 as brake.settings); `layers-rig11`, `layers-rig15` and `layers-rig17` are
+`layers` at the rigging angles 11, 15 and 17 deg (the main job's is 13): the layered canopy's polar.
+--plot draws docs/img/ramair_cells16_wall.png: CL, CD and the chord pitch over the flow time of these runs beside
+the 8-cell canopy's s1 and s1-f3 of trim_study.py (their folders in RAMAIR_OUT, studies-out/ramair by default).
+Writes docs/data/ramair_cells16.json (a run not asked keeps its committed row). About 10 min (coarse) and 11-50 min
+(each layered run) on a 2-core machine, idle to loaded."""
 import argparse
 import datetime
 import json
@@ -36,9 +37,10 @@ LAYERS = {"wall_layers": 3, "wall_after": 400, "steps": 700}
 # brake.settings (the moved mesh cannot follow the trailing edge drawn down: docs/RAMAIR.md)
 BRAKE = {"brake_left": 0.25, "brake_right": 0.25, "brake_start": 3.835, "brake_duration": 0.5, "remesh_below": 0.1}
 RUNS = {"coarse": {}, "layers": LAYERS, "brake-layers": {**LAYERS, **BRAKE}, "layers-rig11": LAYERS,
-        "layers-rig15": LAYERS}
+        "layers-rig15": LAYERS, "layers-rig17": LAYERS}
 KEYS = {"coarse": "cells16", "layers": "cells16_layers", "brake-layers": "cells16_layers_symmetric_brake",
-        "layers-rig11": "cells16_layers_rigging11", "layers-rig15": "cells16_layers_rigging15"}
+        "layers-rig11": "cells16_layers_rigging11", "layers-rig15": "cells16_layers_rigging15",
+        "layers-rig17": "cells16_layers_rigging17"}
 # structure.yaml's generator changes of each run (all 16 cells; the rigging angle of the polar's runs: the lines'
 # tilt back from the vertical at the confluence point, 13 deg in the main job)
 STRUCTURE = {n: {"cells": 16, **({"rigging_angle": int(n[-2:])} if "-rig" in n else {})} for n in RUNS}

@@ -73,7 +73,8 @@ def main(src):
                 bad.append(f"the symmetric brake does not raise {what}: {on[key]:.3f} against {off[key]:.3f}")
         a_off, a_on = off["section_alpha"]["span_average_deg"], on["section_alpha"]["span_average_deg"]
         if not a_on > a_off:
-            bad.append(f"the symmetric brake does not raise the span-averaged angle: {a_on:.2f} against {a_off:.2f} deg")
+            bad.append(f"the symmetric brake does not raise the span-averaged angle: {a_on:.2f} against "
+                       f"{a_off:.2f} deg")
         if not (on["trim"]["trim_reached"] and off["trim"]["trim_reached"]):
             bad.append("the brake comparison needs both runs trimmed")
         print(f"symmetric brake: CL {off['CL_design_area']:.3f} -> {on['CL_design_area']:.3f}, CD "
